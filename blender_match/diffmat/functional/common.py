@@ -1,0 +1,176 @@
+"""Tensor helpers shared by the functional ops: input checks, parameter broadcasting, and the
+wrap-around (tiling) primitives every node builds on.
+
+Conventions (see docs/engine.md):
+- images are NCHW float tensors; C is 1 (grayscale) or 4 (colour, RGBA); values in [0, 1];
+- a continuous parameter is a Python number, a sequence, or a tensor of shape (), (k,) or (B, k);
+  ``param4d`` turns any of them into a (B|1, k, 1, 1) tensor that broadcasts against an image;
+- every spatial op wraps around the image edges, so outputs tile seamlessly.
+"""
+from __future__ import annotations
+
+import math
+from typing import Sequence
+
+import torch
+import torch.nn.functional as F
+
+from ..errors import DiffMatError
+
+GRAY, COLOR = 1, 4
+
+
+def check_image(x: torch.Tensor, name: str = "input", channels: Sequence[int] = (GRAY, COLOR)) -> torch.Tensor:
+    """Raise DiffMatError unless ``x`` is an NCHW float image with an allowed channel count."""
+    if not isinstance(x, torch.Tensor):
+        raise DiffMatError(f"{name}: expected an image tensor, got {type(x).__name__}")
+    if x.dim() != 4:
+        raise DiffMatError(f"{name}: expected an NCHW image tensor, got shape {tuple(x.shape)}")
+    if x.shape[1] not in channels:
+        allowed = " or ".join(str(c) for c in channels)
+        raise DiffMatError(f"{name}: expected {allowed} channels, got {x.shape[1]}")
+    if not x.is_floating_point():
+        raise DiffMatError(f"{name}: expected a float tensor, got {x.dtype}")
+    return x
+
+
+def check_size(size: int, name: str = "size") -> int:
+    """Raise DiffMatError unless ``size`` is a power of two between 1 and 16384."""
+    if isinstance(size, bool) or not isinstance(size, int) or size < 1 or size > 16384 or size & (size - 1):
+        raise DiffMatError(f"{name}: {size!r} is not a power-of-two size between 1 and 16384")
+    return size
+
+
+def check_choice(value, choices: Sequence, name: str):
+    """Raise DiffMatError unless ``value`` is one of ``choices``."""
+    if value not in choices:
+        raise DiffMatError(f"{name}: unknown value {value!r}; expected one of {list(choices)}")
+    return value
+
+
+def param4d(value, like: torch.Tensor | None = None) -> torch.Tensor:
+    """A parameter as a (B|1, k, 1, 1) tensor on ``like``'s device and dtype.
+
+    Accepts a number, a sequence, or a tensor of shape (), (k,), (B, k) or (B, k, 1, 1).
+    """
+    t = value if isinstance(value, torch.Tensor) else torch.tensor(value, dtype=torch.float32)
+    if like is not None:
+        t = t.to(device=like.device, dtype=like.dtype)
+    if t.dim() == 0:
+        return t.reshape(1, 1, 1, 1)
+    if t.dim() == 1:
+        return t.reshape(1, -1, 1, 1)
+    if t.dim() == 2:
+        return t.reshape(t.shape[0], t.shape[1], 1, 1)
+    if t.dim() == 4:
+        return t
+    raise DiffMatError(f"parameter: cannot broadcast a tensor of shape {tuple(t.shape)} against an image")
+
+
+def param2d(value, like: torch.Tensor | None = None) -> torch.Tensor:
+    """A parameter as a (B|1, k) tensor (for matrices, vectors, colours)."""
+    return param4d(value, like).flatten(1)
+
+
+def to_color(x: torch.Tensor) -> torch.Tensor:
+    """Grayscale (N,1,H,W) to RGBA (alpha 1); colour passes through."""
+    if x.shape[1] == COLOR:
+        return x
+    return torch.cat([x, x, x, torch.ones_like(x)], dim=1)
+
+
+def to_gray(x: torch.Tensor) -> torch.Tensor:
+    """RGBA to grayscale by the mean of RGB (Substance's default weights); gray passes through."""
+    if x.shape[1] == GRAY:
+        return x
+    return x[:, :3].mean(dim=1, keepdim=True)
+
+
+def match_channels(x: torch.Tensor, channels: int) -> torch.Tensor:
+    """Convert ``x`` to ``channels`` (1 or 4) channels."""
+    return to_color(x) if channels == COLOR else to_gray(x)
+
+
+def pixel_grid(size: int, device=None, dtype=torch.float32) -> tuple[torch.Tensor, torch.Tensor]:
+    """Pixel-centre coordinates (u, v) in [0, 1), each (1, 1, size, size); u grows rightwards, v downwards."""
+    c = (torch.arange(size, device=device, dtype=dtype) + 0.5) / size
+    v, u = torch.meshgrid(c, c, indexing="ij")
+    return u[None, None], v[None, None]
+
+
+def sample_wrap(img: torch.Tensor, u: torch.Tensor, v: torch.Tensor, mode: str = "bilinear") -> torch.Tensor:
+    """Sample ``img`` at texture coordinates (u, v) with wrap-around addressing.
+
+    ``u`` and ``v`` are (B, H, W) or (B, 1, H, W) in texture units (1 = one image width); any value
+    is folded into [0, 1). Bilinear sampling across the seam reads the opposite edge, so a warp or
+    transform of a tiling image tiles. Differentiable in the image and in (u, v).
+    """
+    if u.dim() == 4:
+        u, v = u[:, 0], v[:, 0]
+    n, c, h, w = img.shape
+    b = max(n, u.shape[0])
+    padded = F.pad(img, (1, 1, 1, 1), mode="circular")
+    u = torch.remainder(u, 1.0)
+    v = torch.remainder(v, 1.0)
+    # pixel index in the padded image: texel i has its centre at (i + 0.5) / w and sits at i + 1.
+    x = u * w + 0.5
+    y = v * h + 0.5
+    gx = x / (w + 1) * 2 - 1
+    gy = y / (h + 1) * 2 - 1
+    grid = torch.stack([gx, gy], dim=-1)
+    if padded.shape[0] != b:
+        padded = padded.expand(b, -1, -1, -1)
+    if grid.shape[0] != b:
+        grid = grid.expand(b, -1, -1, -1)
+    return F.grid_sample(padded, grid, mode=mode, padding_mode="border", align_corners=True)
+
+
+def frequencies(size: int, device=None, dtype=torch.float32) -> tuple[torch.Tensor, torch.Tensor]:
+    """FFT frequency grids (fx, fy) in cycles per image width, shaped for ``torch.fft.rfft2`` output."""
+    fy = torch.fft.fftfreq(size, d=1.0 / size, device=device, dtype=dtype)
+    fx = torch.fft.rfftfreq(size, d=1.0 / size, device=device, dtype=dtype)
+    return fx[None, :].expand(size, -1), fy[:, None].expand(-1, fx.shape[0])
+
+
+def fft_filter(img: torch.Tensor, transfer: torch.Tensor) -> torch.Tensor:
+    """Circular convolution by a real transfer function given on the ``rfft2`` grid.
+
+    ``transfer`` broadcasts against (N, C, H, W//2+1). Circular, so the result tiles; the cost does
+    not depend on the kernel's radius, and the transfer function may depend differentiably on
+    parameters (a blur's radius, a direction).
+    """
+    spec = torch.fft.rfft2(img)
+    return torch.fft.irfft2(spec * transfer, s=img.shape[-2:])
+
+
+def gaussian_blur(img: torch.Tensor, sigma, sigma_y=None, angle=None) -> torch.Tensor:
+    """Wrap-around Gaussian blur; ``sigma`` in texture units (fraction of the image width).
+
+    With ``sigma_y`` and ``angle`` (turns) the kernel is anisotropic: ``sigma`` along the direction
+    ``angle``, ``sigma_y`` across it. Parameters may be tensors (B, 1); differentiable in all of them.
+    """
+    size = img.shape[-1]
+    fx, fy = frequencies(size, img.device, img.dtype)
+    s = param4d(sigma, img)
+    if sigma_y is None:
+        transfer = torch.exp(-2 * math.pi ** 2 * s ** 2 * (fx ** 2 + fy ** 2))
+    else:
+        a = param4d(angle if angle is not None else 0.0, img) * 2 * math.pi
+        along = fx * torch.cos(a) + fy * torch.sin(a)
+        across = -fx * torch.sin(a) + fy * torch.cos(a)
+        sy = param4d(sigma_y, img)
+        transfer = torch.exp(-2 * math.pi ** 2 * (s ** 2 * along ** 2 + sy ** 2 * across ** 2))
+    return fft_filter(img, transfer)
+
+
+def gradient_wrap(img: torch.Tensor) -> tuple[torch.Tensor, torch.Tensor]:
+    """Central-difference slopes (d/du, d/dv) in value per texture unit, wrapping around the edges."""
+    size = img.shape[-1]
+    dx = (torch.roll(img, -1, dims=-1) - torch.roll(img, 1, dims=-1)) * (size / 2)
+    dy = (torch.roll(img, -1, dims=-2) - torch.roll(img, 1, dims=-2)) * (size / 2)
+    return dx, dy
+
+
+def lerp(a: torch.Tensor, b: torch.Tensor, w) -> torch.Tensor:
+    """a + w (b - a), broadcasting ``w``."""
+    return a + (b - a) * w
