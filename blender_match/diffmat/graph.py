@@ -241,7 +241,7 @@ class MaterialGraph(nn.Module):
                 result = node(*args, ctx=ctx, override=overrides.get(n))
                 result = result if isinstance(result, tuple) else (result,)
                 if n in static and n in frontier:
-                    self._cache[key] = tuple(r.detach() for r in result)
+                    result = self._cache[key] = tuple(r.detach() for r in result)
             values[n] = result
             for src, _ in filter(None, self.links[n]):
                 remaining[src] -= 1

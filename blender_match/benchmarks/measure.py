@@ -1,0 +1,81 @@
+"""Timing and peak-memory measurement on CPU (and CUDA where used)."""
+from __future__ import annotations
+
+import resource
+import time
+from contextlib import contextmanager
+from pathlib import Path
+
+_STATUS = Path("/proc/self/status")
+_CLEAR_REFS = Path("/proc/self/clear_refs")
+
+
+def _peak_rss_bytes() -> int:
+    if _STATUS.exists():
+        for line in _STATUS.read_text().splitlines():
+            if line.startswith("VmHWM:"):
+                return int(line.split()[1]) * 1024
+    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024
+
+
+def _current_rss_bytes() -> int:
+    if _STATUS.exists():
+        for line in _STATUS.read_text().splitlines():
+            if line.startswith("VmRSS:"):
+                return int(line.split()[1]) * 1024
+    return 0
+
+
+def _reset_peak() -> bool:
+    """Reset the kernel's peak-RSS mark (Linux); False where that is not possible."""
+    try:
+        _CLEAR_REFS.write_text("5")
+        return True
+    except OSError:
+        return False
+
+
+class Measurement:
+    seconds: float = 0.0
+    peak_bytes: int = 0
+
+
+@contextmanager
+def measure(device: str = "cpu"):
+    """Measure wall time and the peak memory added while the block runs.
+
+    CPU: peak resident set size above the resident size at entry (Linux resets the peak mark first).
+    CUDA: ``torch.cuda.max_memory_allocated`` above the allocation at entry.
+    """
+    import torch
+
+    m = Measurement()
+    if device.startswith("cuda"):
+        torch.cuda.synchronize()
+        torch.cuda.reset_peak_memory_stats()
+        base = torch.cuda.memory_allocated()
+    else:
+        _reset_peak()
+        base = _current_rss_bytes()
+    start = time.perf_counter()
+    yield m
+    if device.startswith("cuda"):
+        torch.cuda.synchronize()
+        m.peak_bytes = torch.cuda.max_memory_allocated() - base
+    else:
+        m.peak_bytes = max(0, _peak_rss_bytes() - base)
+    m.seconds = time.perf_counter() - start
+
+
+def best_of(fn, repeats: int = 3, device: str = "cpu") -> Measurement:
+    """The fastest of ``repeats`` runs of ``fn`` (its peak memory is the largest seen)."""
+    best = None
+    peak = 0
+    for _ in range(repeats):
+        with measure(device) as m:
+            fn()
+        peak = max(peak, m.peak_bytes)
+        if best is None or m.seconds < best.seconds:
+            best = m
+    best.peak_bytes = peak
+    return best

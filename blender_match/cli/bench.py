@@ -1,0 +1,42 @@
+"""``blender-match bench [WHAT]``: run benchmarks and print their figures as a table."""
+from __future__ import annotations
+
+import json
+
+SUITES = ("nodes",)
+
+
+def add_parser(sub):
+    p = sub.add_parser("bench", help="run benchmarks and print figures")
+    p.add_argument("what", nargs="?", choices=SUITES, default="nodes", help="which benchmark (default: nodes)")
+    p.add_argument("--device", default="cpu", help="cpu, cuda or mps")
+    p.add_argument("--threads", type=int, default=0, help="CPU threads for torch (0: torch's default)")
+    p.add_argument("--json", action="store_true", help="print rows as JSON")
+    p.set_defaults(run=run)
+
+
+def print_table(rows: list[dict]):
+    cols = list(rows[0])
+    cells = [[f"{r[c]:.3f}" if isinstance(r[c], float) else str(r[c]) for c in cols] for r in rows]
+    widths = [max(len(c), *(len(row[i]) for row in cells)) for i, c in enumerate(cols)]
+    print(" | ".join(c.ljust(w) for c, w in zip(cols, widths)))
+    print("-|-".join("-" * w for w in widths))
+    for row in cells:
+        print(" | ".join(v.ljust(w) for v, w in zip(row, widths)))
+
+
+def run(args) -> int:
+    import importlib
+
+    import torch
+
+    if args.threads:
+        torch.set_num_threads(args.threads)
+    module = importlib.import_module(f"blender_match.benchmarks.{args.what}")
+    rows = module.run(device=args.device)
+    if args.json:
+        print(json.dumps(rows, indent=1))
+    else:
+        print(f"bench {args.what}: device {args.device}, torch threads {torch.get_num_threads()}")
+        print_table(rows)
+    return 0

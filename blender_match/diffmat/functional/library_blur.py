@@ -1,0 +1,327 @@
+"""Library (non-atomic) blur, warp and transform nodes of Substance's standard library, written
+natively: Blur HQ, Slope Blur, Non-Uniform Blur, Highpass, Vector Warp, Vector Morph, Mosaic,
+Safe Transform, Make It Tile Patch / Photo.
+
+Every op wraps around the image edges (FFT filtering, ``sample_wrap``, ``roll``), so tiling inputs
+give tiling outputs. Distances given in pixels are pixels of a 256-pixel image (``/ 256`` texture
+units), so results look the same at every resolution.
+"""
+from __future__ import annotations
+
+import math
+
+import torch
+
+from ..errors import DiffMatError
+from .common import (frequencies, gaussian_blur, gradient_wrap, lerp, param4d, pixel_grid,
+                     sample_wrap, to_gray)
+from .library_adjust import _bool, _expand_batch
+
+__all__ = ["blur_hq", "slope_blur", "non_uniform_blur", "highpass", "vector_warp", "vector_morph",
+           "mosaic", "safe_transform", "make_it_tile_patch", "make_it_tile_photo"]
+
+PX = 1.0 / 256.0          # one Substance pixel (of a 256-px image) in texture units
+BLUR_SIGMA = 0.5          # Gaussian sigma per unit of Blur HQ intensity, in 256-px pixels
+SLOPE_MODES = {0: "blur", 1: "blur", 5: "max", 6: "min"}
+MAX_SLOPE_SAMPLES = 8
+
+
+def _grid(img: torch.Tensor):
+    return pixel_grid(img.shape[-1], img.device, img.dtype)
+
+
+def blur_hq(source: torch.Tensor, *, intensity=10.0, quality=0.0):
+    """Blur HQ: a high-quality (Gaussian) wrap-around blur; ``intensity`` in 256-px pixels gives a
+    sigma of intensity / 2 pixels. ``quality`` (sample count in Substance) does not change this
+    exact FFT version."""
+    sigma = param4d(intensity, source).abs() * (BLUR_SIGMA * PX)
+    return _expand_batch(gaussian_blur(source, sigma).clamp(0.0, 1.0), quality)
+
+
+def highpass(source: torch.Tensor, *, radius=6.0):
+    """Highpass: ``source - blur(source) + 0.5`` with a Blur HQ of ``radius`` pixels, clamped."""
+    x = to_gray(source)
+    sigma = param4d(radius, x).abs() * (BLUR_SIGMA * PX)
+    return (x - gaussian_blur(x, sigma) + 0.5).clamp(0.0, 1.0)
+
+
+def slope_blur(source: torch.Tensor, effect: torch.Tensor, *, samples: int = 8, mode: int = 1,
+               intensity=10.0):
+    """Slope Blur: smears ``source`` along the slope of the ``effect`` height map.
+
+    Each pixel combines itself and ``samples`` (at most 8) samples taken down-slope (towards lower
+    effect values) at distances up to ``intensity`` 256-px pixels (negative: up-slope), scaled by the local steepness
+    (g / sqrt(1 + |g|^2), g the slope in value per image width). ``mode``: 0 or 1 blur (average),
+    5 max, 6 min (Substance's blend-mode codes).
+    """
+    if mode not in SLOPE_MODES:
+        raise DiffMatError(f"slope_blur.mode: unknown value {mode!r}; expected one of {sorted(SLOPE_MODES)}")
+    if isinstance(samples, bool) or int(samples) < 1:
+        raise DiffMatError(f"slope_blur.samples: expected a positive integer, got {samples!r}")
+    n = min(int(samples), MAX_SLOPE_SAMPLES)
+    gx, gy = gradient_wrap(gaussian_blur(to_gray(effect), PX))
+    norm = torch.sqrt(1.0 + gx * gx + gy * gy)
+    k = -param4d(intensity, source) * PX
+    dx, dy = k * gx / norm, k * gy / norm
+    u, v = _grid(source)
+    taken = [source.expand(dx.shape[0], -1, -1, -1) if dx.shape[0] > source.shape[0] else source]
+    taken += [sample_wrap(source, u + dx * ((i + 1) / n), v + dy * ((i + 1) / n)) for i in range(n)]
+    kind = SLOPE_MODES[mode]
+    if kind == "blur":
+        out = sum(taken) / len(taken)
+    else:
+        stack = torch.stack(taken, dim=0)
+        out = stack.amax(dim=0) if kind == "max" else stack.amin(dim=0)
+    return out.clamp(0.0, 1.0)
+
+
+def non_uniform_blur(source: torch.Tensor, effect: torch.Tensor, *, intensity=10.0, anisotropy=0.0,
+                     asymmetry=0.0, angle=0.0, samples: int = 4, blades: int = 5):
+    """Non-Uniform Blur: a blur whose radius follows ``effect`` (white: ``intensity`` 256-px
+    pixels, as Blur HQ; black: none).
+
+    The image is blurred at ``samples`` + 1 radii (2 to 7 levels, FFT) and each pixel blends the two
+    levels around its effect value. ``anisotropy`` narrows the kernel across ``angle`` (turns),
+    ``asymmetry`` shifts it forward along ``angle``. ``blades`` (bokeh shape) is not modelled: the
+    kernel is Gaussian.
+    """
+    if isinstance(samples, bool) or int(samples) < 1:
+        raise DiffMatError(f"non_uniform_blur.samples: expected a positive integer, got {samples!r}")
+    levels = min(max(int(samples), 1), 6) + 1
+    size = source.shape[-1]
+    fx, fy = frequencies(size, source.device, source.dtype)
+    smax = param4d(intensity, source).abs() * (BLUR_SIGMA * PX)
+    a = param4d(angle, source) * (2 * math.pi)
+    along = fx * torch.cos(a) + fy * torch.sin(a)
+    across = -fx * torch.sin(a) + fy * torch.cos(a)
+    aniso = param4d(anisotropy, source).clamp(0.0, 1.0)
+    asym = param4d(asymmetry, source)
+    spec = torch.fft.rfft2(source)
+    t = to_gray(effect).clamp(0.0, 1.0) * (levels - 1)
+    out = source * (1.0 - t).clamp(0.0, 1.0)
+    for k in range(1, levels):
+        s = smax * (k / (levels - 1))
+        sa = s * (1.0 - aniso)
+        mag = torch.exp(-2 * math.pi ** 2 * (s ** 2 * along ** 2 + sa ** 2 * across ** 2))
+        phase = -2 * math.pi * along * (asym * s * 2.0)
+        transfer = torch.complex(mag * torch.cos(phase), mag * torch.sin(phase))
+        level = torch.fft.irfft2(spec * transfer, s=source.shape[-2:])
+        w = (1.0 - (t - k).abs()).clamp(0.0, 1.0)
+        out = out + level * w
+    return out.clamp(0.0, 1.0)
+
+
+def _vector(vector_map: torch.Tensor, vector_format: int, name: str):
+    """Displacement (du, dv) from an RG vector map: (c * 2 - 1); green points up in OpenGL (1),
+    down in DirectX (0)."""
+    if vector_format not in (0, 1):
+        raise DiffMatError(f"{name}.vector_format: unknown value {vector_format!r}; expected 0 (DirectX) or 1 (OpenGL)")
+    if vector_map.shape[1] == 1:
+        du = vector_map * 2 - 1
+        dv = du
+    else:
+        du = vector_map[:, 0:1] * 2 - 1
+        dv = vector_map[:, 1:2] * 2 - 1
+    return du, (-dv if vector_format == 1 else dv)
+
+
+def vector_warp(input: torch.Tensor, vector_map: torch.Tensor, *, intensity=1.0, vector_format: int = 0):
+    """Vector Warp: samples ``input`` displaced by the vector map (RG in [0, 1] mapped to [-1, 1],
+    times ``intensity`` image widths)."""
+    du, dv = _vector(vector_map, vector_format, "vector_warp")
+    k = param4d(intensity, input)
+    u, v = _grid(input)
+    return sample_wrap(input, u + k * du, v + k * dv).clamp(0.0, 1.0)
+
+
+MORPH_STEPS = 4
+MORPH_SCALE = 0.25        # image widths travelled at amount 1 along a unit vector
+
+
+def vector_morph(input: torch.Tensor, vector_field: torch.Tensor, *, amount=1.0, vector_format: int = 0):
+    """Vector Morph: advects ``input`` along the vector field (RG mapped to [-1, 1]), following the
+    field in 4 steps over ``amount`` * 0.25 image widths."""
+    _vector(vector_field, vector_format, "vector_morph")
+    step = param4d(amount, input) * (MORPH_SCALE / MORPH_STEPS)
+    u, v = _grid(input)
+    pu, pv = u.expand(step.shape[0], -1, -1, -1), v.expand(step.shape[0], -1, -1, -1)
+    for _ in range(MORPH_STEPS):
+        field = sample_wrap(vector_field, pu, pv)
+        du, dv = _vector(field, vector_format, "vector_morph")
+        pu, pv = pu + step * du, pv + step * dv
+    return sample_wrap(input, pu, pv).clamp(0.0, 1.0)
+
+
+def mosaic(input: torch.Tensor, effect: torch.Tensor | None = None, *, intensity=0.5, samples: int = 4):
+    """Mosaic: a multi-step warp of ``input`` along directions read from ``effect`` (or from the
+    input itself): direction angle = value turns, total length ``intensity`` * 0.1 image widths, in
+    ``samples`` steps (at most 4), which shatters the image into warped facets."""
+    if isinstance(samples, bool) or int(samples) < 1:
+        raise DiffMatError(f"mosaic.samples: expected a positive integer, got {samples!r}")
+    n = min(int(samples), 4)
+    k = param4d(intensity, input) * (0.1 / n)
+    x = input
+    u, v = _grid(input)
+    for _ in range(n):
+        e = to_gray(effect if effect is not None else x) * (2 * math.pi)
+        x = sample_wrap(x, u + k * torch.cos(e), v + k * torch.sin(e))
+    return x.clamp(0.0, 1.0)
+
+
+# ---------------------------------------------------------------- safe transform
+SYMMETRY = (0, 1, 2, 3)   # none, X, Y, X and Y
+
+
+def _hash01(seed: int, n: int) -> torch.Tensor:
+    g = torch.Generator().manual_seed(int(seed) & 0x7FFFFFFF)
+    return torch.rand(n, generator=g, dtype=torch.float64)
+
+
+def safe_transform(input: torch.Tensor, *, tile: int = 1, tile_mode: int = 0, tile_xy=(1.0, 1.0),
+                   tile_safe_rotation: bool = True, offset=(0.0, 0.0), offset_mode: int = 0,
+                   rotation=0.0, symmetry: int = 0, mipmap_mode: int = 0, mipmap_level: int = 0,
+                   seed: int = 0):
+    """Safe Transform: tiling, rotation, offset and mirroring that keep the image tileable.
+
+    The output reads ``input`` at M (p - offset - 1/2) + 1/2, M = tiling x rotation. With
+    ``tile_safe_rotation`` the rotation snaps to the nearest angle whose matrix is integer
+    ([[a, -b], [b, a]], a = round(n cos r), b = round(n sin r); 45 degrees at tile 1 gives the
+    classic sqrt(2) zoom); without it the rotation is continuous (and only tiles at multiples of
+    90 degrees). ``tile_mode`` 1 uses ``tile_xy`` (per axis). ``offset_mode`` 1 adds a random
+    offset from the seed. ``symmetry``: 0 none, 1 mirror X, 2 mirror Y, 3 both. Mipmap settings are
+    accepted; a Gaussian pre-filter replaces mipmaps when minifying.
+    """
+    if symmetry not in SYMMETRY:
+        raise DiffMatError(f"safe_transform.symmetry: unknown value {symmetry!r}; expected one of {list(SYMMETRY)}")
+    if tile_mode not in (0, 1) or offset_mode not in (0, 1):
+        raise DiffMatError("safe_transform: tile_mode and offset_mode must be 0 or 1")
+    if isinstance(tile, bool) or int(tile) < 1:
+        raise DiffMatError(f"safe_transform.tile: expected a positive integer, got {tile!r}")
+    x = input
+    if tile_mode == 1:
+        txy = param4d(tile_xy, x).detach().flatten()
+        tx, ty = max(1, round(float(txy[0]))), max(1, round(float(txy[-1])))
+    else:
+        tx = ty = int(tile)
+    r = param4d(rotation, x)[:, :1]
+    if _bool(tile_safe_rotation, "safe_transform.tile_safe_rotation"):
+        ang = r.detach().flatten().tolist()
+        mats = []
+        for a in ang:
+            if tx == ty:
+                ca = round(tx * math.cos(2 * math.pi * a))
+                sb = round(tx * math.sin(2 * math.pi * a))
+                if ca == 0 and sb == 0:
+                    ca = 1
+                mats.append((ca, -sb, sb, ca))
+            else:
+                q = round(4 * a) % 4
+                c, s = ((1, 0), (0, 1), (-1, 0), (0, -1))[q]
+                mats.append((c * tx, -s * ty, s * tx, c * ty))
+        m = torch.tensor(mats, dtype=x.dtype, device=x.device).reshape(-1, 4, 1, 1)
+        m = m + 0.0 * r  # keeps the batch (and the autograd graph) of ``rotation``
+        m00, m01, m10, m11 = m[:, 0:1], m[:, 1:2], m[:, 2:3], m[:, 3:4]
+    else:
+        a = r * (2 * math.pi)
+        c, s = torch.cos(a), torch.sin(a)
+        m00, m01, m10, m11 = c * tx, -s * ty, s * tx, c * ty
+    off = param4d(offset, x)
+    ou, ov = off[:, :1], off[:, -1:]
+    if offset_mode == 1:
+        rnd = _hash01(seed, 2).to(dtype=x.dtype, device=x.device)
+        ou, ov = ou + rnd[0], ov + rnd[1]
+    u, v = _grid(x)
+    if symmetry in (1, 3):
+        u = 1.0 - u
+    if symmetry in (2, 3):
+        v = 1.0 - v
+    pu, pv = u - ou - 0.5, v - ov - 0.5
+    su = m00 * pu + m01 * pv + 0.5
+    sv = m10 * pu + m11 * pv + 0.5
+    scale = float(torch.sqrt(m00 * m00 + m10 * m10).detach().max()) if tx == ty else float(max(tx, ty))
+    if scale > 2.0:
+        x = gaussian_blur(x, 0.35 * scale / x.shape[-1])
+    return sample_wrap(x, su, sv).clamp(0.0, 1.0)
+
+
+# ---------------------------------------------------------------- make it tile
+def _cell_tables(n: int, seed: int, count: int, like: torch.Tensor) -> torch.Tensor:
+    g = torch.Generator().manual_seed(int(seed) & 0x7FFFFFFF)
+    return torch.rand(count, n, n, generator=g, dtype=torch.float64).to(device=like.device, dtype=like.dtype)
+
+
+def make_it_tile_patch(source: torch.Tensor, *, octave: int = 3, size=1.0, disorder=0.0, mask_size=0.5,
+                       mask_precision=0.5, mask_warping=0.0, rotation=0.0, rotation_variation=0.0,
+                       seed: int = 0):
+    """Make It Tile Patch: makes a tileable texture out of any image by scattering patches of it.
+
+    The output is a (2^octave)^2 grid of cells; each cell shows a patch of ``source`` taken around
+    a random point (kept inside the image), rotated by ``rotation`` + ``rotation_variation`` x
+    random (turns), scaled by ``size``; cell centres jitter by ``disorder``. Each pixel blends the
+    patches of its four nearest cells with Gaussian weights whose width is ``mask_size`` (cells)
+    and sharpness ``mask_precision``; ``mask_warping`` bends the seams with the image's own values.
+    """
+    if isinstance(octave, bool) or not 0 <= int(octave) <= 8:
+        raise DiffMatError(f"make_it_tile_patch.octave: expected an integer in [0, 8], got {octave!r}")
+    x = source
+    n = 2 ** int(octave)
+    tables = _cell_tables(n, seed, 5, x)          # jitter u, jitter v, source u, source v, rotation
+    u, v = _grid(x)
+    dis = param4d(disorder, x)
+    msize = param4d(mask_size, x).clamp_min(0.05)
+    prec = param4d(mask_precision, x)
+    warp = param4d(mask_warping, x)
+    scale = param4d(size, x).clamp_min(0.05)
+    rot = param4d(rotation, x)
+    rvar = param4d(rotation_variation, x)
+    gray = to_gray(x)
+    uw = u + warp * (gray - 0.5) * (0.5 / n)
+    vw = v + warp * (gray - 0.5) * (0.5 / n)
+    i0 = torch.floor(u * n - 0.5).long()
+    j0 = torch.floor(v * n - 0.5).long()
+    sharp = (1.0 + 12.0 * prec) / (msize * msize)
+    num, den = 0.0, 0.0
+    for di in (0, 1):
+        for dj in (0, 1):
+            ci = torch.remainder(i0 + di, n)
+            cj = torch.remainder(j0 + dj, n)
+            jit_u, jit_v, src_u, src_v, rnd = (t[cj, ci] for t in tables)
+            cu = (ci + 0.5 + dis * (jit_u - 0.5)) / n
+            cv = (cj + 0.5 + dis * (jit_v - 0.5)) / n
+            lu = torch.remainder(u - cu + 0.5, 1.0) - 0.5
+            lv = torch.remainder(v - cv + 0.5, 1.0) - 0.5
+            wu = torch.remainder(uw - cu + 0.5, 1.0) - 0.5
+            wv = torch.remainder(vw - cv + 0.5, 1.0) - 0.5
+            w = torch.exp(-sharp * (wu * wu + wv * wv) * (n * n))
+            a = (rot + rvar * (rnd - 0.5)) * (2 * math.pi)
+            ca, sa = torch.cos(a), torch.sin(a)
+            su = 0.25 + 0.5 * src_u + (ca * lu - sa * lv) / scale
+            sv = 0.25 + 0.5 * src_v + (sa * lu + ca * lv) / scale
+            num = num + w * sample_wrap(x, su, sv)
+            den = den + w
+    return (num / (den + 1e-12)).clamp(0.0, 1.0)
+
+
+def _seam_weight(t: torch.Tensor, size, precision, warping, gray) -> torch.Tensor:
+    """1 at the image border (t = 0 or 1), falling to 0 at ``size`` / 2 from it."""
+    d = torch.minimum(t, 1.0 - t) + warping * (gray - 0.5) * 0.1
+    half = size * 0.5
+    soft = ((1.0 - precision) * half).clamp_min(1e-3)
+    return (0.5 + (half - d) / (2 * soft)).clamp(0.0, 1.0)
+
+
+def make_it_tile_photo(source: torch.Tensor, *, mask_warping_h=0.5, mask_size_h=0.5, mask_precision_h=0.5,
+                       mask_warping_v=0.5, mask_size_v=0.5, mask_precision_v=0.5):
+    """Make It Tile Photo: hides the seams of a photo by cross-fading, near each border, to the
+    image shifted by half its size (whose middle then straddles the border), first horizontally,
+    then vertically. ``mask_size`` is the blend band (fraction of the image), ``mask_precision``
+    its sharpness, ``mask_warping`` bends it with the image's values."""
+    x = source
+    u, v = _grid(x)
+    gray = to_gray(x)
+    w = x.shape[-1]
+    wh = _seam_weight(u, param4d(mask_size_h, x), param4d(mask_precision_h, x), param4d(mask_warping_h, x), gray)
+    h = lerp(x, torch.roll(x, w // 2, dims=-1), wh)
+    wv = _seam_weight(v, param4d(mask_size_v, x), param4d(mask_precision_v, x), param4d(mask_warping_v, x),
+                      to_gray(h))
+    return lerp(h, torch.roll(h, x.shape[-2] // 2, dims=-2), wv).clamp(0.0, 1.0)

@@ -1,0 +1,296 @@
+"""Library (non-atomic) normal, height and relief nodes of Substance's standard library, written
+natively: Normal Combine / Blend / Normalise, Normal to Height, Curvature, Curvature Smooth,
+HBAO, Ambient Occlusion 2, Edge Detect, Bevel, and the metallic/roughness to
+diffuse/specular/glossiness converter.
+
+Normal maps are RGBA, tangent space, encoded n * 0.5 + 0.5. ``normal_format`` 0 is DirectX
+(green points down the image), 1 is OpenGL (green points up). Slopes and curvatures are measured
+per pixel of a 256-pixel image so results do not depend on the resolution. Spatial work is FFT or
+wrap-around sampling, so tiling inputs give tiling outputs.
+"""
+from __future__ import annotations
+
+import math
+
+import torch
+
+from ..errors import DiffMatError
+from .common import (COLOR, frequencies, gaussian_blur, gradient_wrap, param4d, pixel_grid,
+                     sample_wrap, to_gray)
+from .library_adjust import _bool, linear_to_srgb, srgb_to_linear
+
+__all__ = ["normal_combine", "normal_blend", "normal_normalise", "normal_to_height", "curvature",
+           "curvature_smooth", "hbao", "ambient_occlusion", "edge_detect", "bevel",
+           "metallic_roughness_to_specular_glossiness", "height_to_normal_map"]
+
+PX = 1.0 / 256.0
+
+
+def _check_format(fmt, name):
+    if fmt not in (0, 1):
+        raise DiffMatError(f"{name}.normal_format: unknown value {fmt!r}; expected 0 (DirectX) or 1 (OpenGL)")
+    return fmt
+
+
+def _decode(n: torch.Tensor) -> torch.Tensor:
+    """RGBA normal map to vectors in [-1, 1]^3 (gray input: a flat normal). Tangent-space normals
+    cannot point into the surface, so z is clamped at 0."""
+    if n.shape[1] != COLOR:
+        flat = torch.zeros(n.shape[0], 3, *n.shape[-2:], dtype=n.dtype, device=n.device)
+        flat[:, 2] = 1.0
+        return flat
+    v = n[:, :3] * 2.0 - 1.0
+    return torch.cat([v[:, :2], v[:, 2:].clamp_min(0.0)], dim=1)
+
+
+def _normalize(v: torch.Tensor) -> torch.Tensor:
+    return v / torch.sqrt((v * v).sum(dim=1, keepdim=True) + 1e-12)
+
+
+def _encode(v: torch.Tensor) -> torch.Tensor:
+    rgb = (_normalize(v) * 0.5 + 0.5).clamp(0.0, 1.0)
+    return torch.cat([rgb, torch.ones_like(rgb[:, :1])], dim=1)
+
+
+def height_to_normal_map(height: torch.Tensor, intensity=1.0, normal_format: int = 0) -> torch.Tensor:
+    """Tangent-space normal map of a height map: slopes in height per 256-px pixel times
+    ``intensity``; OpenGL or DirectX green."""
+    h = to_gray(height)
+    du, dv = gradient_wrap(h)
+    k = param4d(intensity, h) * PX
+    nx = -k * du
+    ny = k * dv if normal_format == 1 else -k * dv
+    return _encode(torch.cat([nx, ny, torch.ones_like(nx)], dim=1))
+
+
+def normal_combine(input: torch.Tensor, input_1: torch.Tensor, *, blend_quality: int = 0):
+    """Normal Combine: details of ``input_1`` on top of ``input``. ``blend_quality`` 0 (fast):
+    whiteout blending (xy added, z multiplied); 1 (high): reoriented normal mapping. A flat
+    ``input_1`` leaves ``input`` unchanged (and vice versa)."""
+    if blend_quality not in (0, 1):
+        raise DiffMatError(f"normal_combine.blend_quality: unknown value {blend_quality!r}; expected 0 or 1")
+    a, b = _decode(input), _decode(input_1)
+    if blend_quality == 0:
+        v = torch.cat([a[:, :2] + b[:, :2], a[:, 2:] * b[:, 2:]], dim=1)
+    else:
+        t = a + torch.tensor([0.0, 0.0, 1.0], dtype=a.dtype, device=a.device)[None, :, None, None]
+        u = b * torch.tensor([-1.0, -1.0, 1.0], dtype=a.dtype, device=a.device)[None, :, None, None]
+        v = t * (t * u).sum(1, keepdim=True) / t[:, 2:].clamp_min(1e-4) - u
+    return _encode(v)
+
+
+def normal_blend(normalbg: torch.Tensor, normalfg: torch.Tensor, mask: torch.Tensor | None = None, *,
+                 opacity=1.0, use_mask: bool = True):
+    """Normal Blend: ``normalfg`` over ``normalbg`` with ``opacity`` (times ``mask`` when connected
+    and ``use_mask``), renormalised."""
+    a, b = _decode(normalbg), _decode(normalfg)
+    w = param4d(opacity, a)
+    if mask is not None and _bool(use_mask, "normal_blend.use_mask"):
+        w = w * to_gray(mask)
+    return _encode(a + (b - a) * w)
+
+
+def normal_normalise(input: torch.Tensor):
+    """Normal Normalise: rescales every normal to unit length."""
+    return _encode(_decode(input))
+
+
+def _slopes(normal: torch.Tensor, normal_format: int):
+    """Height slopes (d/du, d/dv) per 256-px pixel from a normal map."""
+    n = _decode(normal)
+    nz = n[:, 2:].clamp_min(0.05)
+    su = -n[:, 0:1] / nz
+    sv = n[:, 1:2] / nz if normal_format == 1 else -n[:, 1:2] / nz
+    return su, sv
+
+
+def _derivative_transfer(size, like):
+    """Transfer functions of ``gradient_wrap`` (central differences, per 256-px pixel)."""
+    fx, fy = frequencies(size, like.device, like.dtype)
+    k = size / 2 * PX * 2
+    return k * torch.sin(2 * math.pi * fx / size), k * torch.sin(2 * math.pi * fy / size), fx, fy
+
+
+def normal_to_height(input: torch.Tensor, *, normal_format: int = 0, relief_balance=(0.5, 0.5, 0.5),
+                     opacity=1.0):
+    """Normal to Height: integrates the normal map's slopes into a height map (least squares,
+    FFT), weights low / mid / high frequencies by ``relief_balance`` (0.5 = neutral; octave bands
+    of the image size), scales the relief by ``opacity`` and normalises it to [0, 1] around 0.5."""
+    _check_format(normal_format, "normal_to_height")
+    su, sv = _slopes(input, normal_format)
+    size = input.shape[-1]
+    du, dv, fx, fy = _derivative_transfer(size, su)
+    spec_u, spec_v = torch.fft.rfft2(su), torch.fft.rfft2(sv)
+    den = du * du + dv * dv
+    # gradient_wrap's transfer is i * d: least squares H = -i (d_u Su + d_v Sv) / (d_u^2 + d_v^2)
+    num = spec_u * du + spec_v * dv
+    hspec = -1j * num / den.clamp_min(1e-12) * (den > 1e-9)
+    rb = param4d(relief_balance, su)
+    f = torch.sqrt(fx * fx + fy * fy).clamp_min(1.0)
+    r = (torch.log2(f) / max(math.log2(size / 2), 1.0)).clamp(0.0, 1.0)
+    lo, mid, hi = rb[:, 0:1], rb[:, 1:2], rb[:, 2:3]
+    band = torch.where(r < 0.5, lo + (mid - lo) * (r * 2), mid + (hi - mid) * (r * 2 - 1)) * 2.0
+    h = torch.fft.irfft2(hspec * band, s=input.shape[-2:])
+    span = (h.amax(dim=(-2, -1), keepdim=True) - h.amin(dim=(-2, -1), keepdim=True)).clamp_min(1e-6)
+    mean = h.mean(dim=(-2, -1), keepdim=True)
+    return (0.5 + param4d(opacity, h) * (h - mean) / span).clamp(0.0, 1.0)
+
+
+def _divergence(normal: torch.Tensor, normal_format: int) -> torch.Tensor:
+    """Divergence of the normals' tangent part per 256-px pixel (positive on bumps)."""
+    n = _decode(normal)
+    ny_up = n[:, 1:2] if normal_format == 1 else -n[:, 1:2]
+    dnx, _ = gradient_wrap(n[:, 0:1])
+    _, dny = gradient_wrap(ny_up)
+    return (dnx - dny) * PX
+
+
+def curvature(input: torch.Tensor, *, normal_format: int = 0, intensity=1.0):
+    """Curvature: 0.5 + ``intensity`` x the divergence of the normal map (per 256-px pixel):
+    convex areas bright, concave dark, flat 0.5."""
+    _check_format(normal_format, "curvature")
+    div = _divergence(input, normal_format)
+    return (0.5 + param4d(intensity, div) * div).clamp(0.0, 1.0)
+
+
+def curvature_smooth(input: torch.Tensor, *, normal_format: int = 0):
+    """Curvature Smooth: curvature averaged over Gaussian scales of 1, 2, 4, 8 and 16 pixels
+    (of 256), normalised so the strongest curvature reaches 0 or 1 (flat stays 0.5)."""
+    _check_format(normal_format, "curvature_smooth")
+    div = _divergence(input, normal_format)
+    size = div.shape[-1]
+    fx, fy = frequencies(size, div.device, div.dtype)
+    f2 = fx * fx + fy * fy
+    transfer = sum(torch.exp(-2 * math.pi ** 2 * (s * PX) ** 2 * f2) for s in (1, 2, 4, 8, 16)) / 5
+    c = torch.fft.irfft2(torch.fft.rfft2(div) * transfer, s=div.shape[-2:])
+    peak = c.abs().amax(dim=(-2, -1), keepdim=True).clamp_min(1e-6)
+    return (0.5 + 0.5 * c / peak).clamp(0.0, 1.0)
+
+
+HBAO_STEPS = 3
+HBAO_RADIUS = 0.05        # image widths at radius 1
+HBAO_HEIGHT = 0.25        # image widths of relief at height_depth 1
+
+
+def hbao(input: torch.Tensor, *, height_depth=0.1, radius=1.0, quality: int = 4, use_world_units: bool = False,
+         surface_size=100.0, height_scale=1.0):
+    """HBAO: horizon-based ambient occlusion of a height map (1 unoccluded, darker in cavities).
+
+    Heights span ``height_depth`` x 0.25 image widths (with ``use_world_units``: ``height_scale``
+    cm over ``surface_size`` cm). Along ``quality`` directions (4, 8 or 16; at most 8 are
+    traced), 3 steps out to ``radius`` x 0.05 image widths find the highest horizon; the
+    occlusion is the mean sine of the horizon elevations. A flat height gives 1.
+    """
+    if quality not in (4, 8, 16):
+        raise DiffMatError(f"hbao.quality: unknown value {quality!r}; expected 4, 8 or 16")
+    h = to_gray(input)
+    if _bool(use_world_units, "hbao.use_world_units"):
+        depth = param4d(height_scale, h) / param4d(surface_size, h).clamp_min(1e-3)
+    else:
+        depth = param4d(height_depth, h) * HBAO_HEIGHT
+    rad = param4d(radius, h).clamp_min(1e-4) * HBAO_RADIUS
+    dirs = min(quality, 8)
+    u, v = pixel_grid(h.shape[-1], h.device, h.dtype)
+    occ = 0.0
+    for d in range(dirs):
+        a = 2 * math.pi * (d + 0.5) / dirs
+        best = None
+        for s in range(HBAO_STEPS):
+            dist = rad * ((s + 1) / HBAO_STEPS)
+            sample = sample_wrap(h, u + dist * math.cos(a), v + dist * math.sin(a))
+            tan = (sample - h) * depth / dist
+            best = tan if best is None else torch.maximum(best, tan)
+        occ = occ + (best / torch.sqrt(1 + best * best)).clamp_min(0.0)
+    return (1.0 - occ / dirs).clamp(0.0, 1.0)
+
+
+AO_SCALES = (0.25, 0.5, 1.0)   # fractions of the spreading radius
+
+
+def ambient_occlusion(source: torch.Tensor, *, height_depth=0.15, spreading=0.15,
+                      equalizer=(0.5, 0.5, 0.5), levels=(0.0, 0.5, 1.0)):
+    """Ambient Occlusion (the older, blur-based version): occlusion is how far the neighbourhood
+    average (Gaussian, three scales up to ``spreading`` x 0.25 image widths, weighted low / mid /
+    high by ``equalizer``) rises above the height, times ``height_depth`` x 8. ``levels``
+    (low, mid, high) remaps the result, mid as a gamma. Flat height gives 1."""
+    h = to_gray(source)
+    size = h.shape[-1]
+    fx, fy = frequencies(size, h.device, h.dtype)
+    f2 = fx * fx + fy * fy
+    spread = param4d(spreading, h).clamp_min(1e-4) * 0.25
+    eq = param4d(equalizer, h) * 2.0
+    transfer = 0.0
+    for k, frac in enumerate(AO_SCALES):
+        sigma = spread * frac
+        transfer = transfer + eq[:, k:k + 1] * (torch.exp(-2 * math.pi ** 2 * sigma ** 2 * f2) - 1.0)
+    rise = torch.fft.irfft2(torch.fft.rfft2(h) * transfer, s=h.shape[-2:]) / len(AO_SCALES)
+    ao = (1.0 - rise.clamp_min(0.0) * param4d(height_depth, h) * 8.0).clamp(0.0, 1.0)
+    lv = param4d(levels, h)
+    lo, mid, hi = lv[:, 0:1], lv[:, 1:2], lv[:, 2:3]
+    x = ((ao - lo) / (hi - lo).clamp_min(1e-3)).clamp(1e-6, 1.0)
+    m = ((mid - lo) / (hi - lo).clamp_min(1e-3)).clamp(0.01, 0.99)
+    gamma = math.log(0.5) / torch.log(m)
+    return (x ** gamma).clamp(0.0, 1.0)
+
+
+def edge_detect(input: torch.Tensor, *, edge_width=2.0, edge_roundness=4.0, tolerance=0.0,
+                invert: bool = False):
+    """Edge Detect: white lines along the contours of a (mostly two-tone) image.
+
+    The gradient magnitude (central differences) of the image blurred by sigma = ``edge_width`` / 2
+    (256-px pixels), normalised so a unit step peaks at about 1, minus ``tolerance``, gained x 2 and rounded by a blur of
+    ``edge_roundness`` / 2 pixels; ``invert`` gives black lines on white."""
+    x = to_gray(input)
+    size = x.shape[-1]
+    sigma = torch.sqrt((param4d(edge_width, x) * 0.5 * PX) ** 2 + (0.5 / size) ** 2)
+    gu, gv = gradient_wrap(gaussian_blur(x, sigma))
+    # a unit step blurred by sigma peaks at 1 / (sigma sqrt(2 pi)); central differences widen it
+    e = torch.sqrt(gu * gu + gv * gv + 1e-12) * torch.sqrt(sigma ** 2 + (1.0 / size) ** 2) * math.sqrt(2 * math.pi)
+    tol = param4d(tolerance, x)
+    out = ((e - tol) / (1 - tol).clamp_min(1e-3) * 2.0).clamp(0.0, 1.0)
+    out = gaussian_blur(out, param4d(edge_roundness, x).abs() * 0.5 * PX).clamp(0.0, 1.0)
+    return 1.0 - out if _bool(invert, "edge_detect.invert") else out
+
+
+BEVEL_WIDTH = 0.2          # image widths of bevel at distance 1
+
+
+def bevel(input: torch.Tensor, *, distance=0.5, smoothing=0.0, normal_intensity=10.0, normal_format: int = 0):
+    """Bevel: a linear ramp around the shapes of a (mostly two-tone) mask.
+
+    The signed distance to the mask's 0.5 contour is estimated to first order,
+    (b - 0.5) / |grad b| with b the mask blurred by sigma = width (which keeps the estimate close
+    to linear out to ~0.8 width), and ramped over the bevel width ``distance`` x 0.2 image widths: positive bevels inwards (height 0 at the contour
+    rising to 1 inside), negative outwards (1 at the contour falling to 0 outside). ``smoothing``
+    blurs the height (x 2 pixels of 256). Returns (height, normal), the normal computed from the
+    height with ``normal_intensity``."""
+    _check_format(normal_format, "bevel")
+    x = to_gray(input)
+    d = param4d(distance, x)
+    width = torch.sqrt((d * BEVEL_WIDTH) ** 2 + (1.0 / x.shape[-1]) ** 2)
+    b = gaussian_blur(x, width)
+    gu, gv = gradient_wrap(b)
+    sd = (b - 0.5) / torch.sqrt(gu * gu + gv * gv + 1.0)
+    outward = (d < 0).to(x.dtype)
+    h = (sd / width + outward).clamp(0.0, 1.0)
+    h = gaussian_blur(h, param4d(smoothing, x).abs() * 2.0 * PX).clamp(0.0, 1.0)
+    return h, height_to_normal_map(h, normal_intensity, normal_format)
+
+
+def metallic_roughness_to_specular_glossiness(basecolor: torch.Tensor, metallic: torch.Tensor,
+                                              roughness: torch.Tensor):
+    """BaseColor/Metallic/Roughness to Diffuse/Specular/Glossiness (sRGB colours):
+    diffuse = base x (1 - metallic), specular = lerp(0.04, base, metallic) in linear space,
+    glossiness = 1 - roughness."""
+    base = basecolor if basecolor.shape[1] == COLOR else torch.cat([basecolor] * 3 + [torch.ones_like(basecolor)], 1)
+    m = to_gray(metallic)
+    lin = srgb_to_linear(base)[:, :3]
+    diffuse_lin = lin * (1.0 - m)
+    spec_lin = 0.04 + (lin - 0.04) * m
+    alpha = base[:, 3:]
+
+    def pack(rgb):
+        rgb = linear_to_srgb(rgb)
+        return torch.cat([rgb, alpha.expand(rgb.shape[0], -1, -1, -1)], dim=1)
+
+    return pack(diffuse_lin), pack(spec_lin), (1.0 - to_gray(roughness)).clamp(0.0, 1.0)

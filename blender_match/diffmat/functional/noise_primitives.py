@@ -1,0 +1,372 @@
+"""Noise primitives the noise generators are built from: lattice (value / gradient) noise, fractal
+sums, cellular (Worley) fields, Gaussian spot fields, fixed-lattice white noise, domain warping and
+the continuous-scale blend.
+
+Conventions (docs/engine.md, "Generators"):
+- every random number comes from a ``torch.Generator`` seeded from (seed, key, lattice size), so a
+  lattice of a given size is the same whichever octave or blend asks for it;
+- lattices live in texture space: ``n`` cells across the image, integer, wrapping, so the noise
+  tiles and a render at any size samples the same continuous function. Where a lattice is fine
+  relative to the output (fewer than 4 pixels a cell) it is rendered supersampled and box-filtered,
+  so a 1024 render box-downsampled to 512 equals the 512 render;
+- zero-mean primitives are normalised to unit standard deviation, so generators combine them by
+  weights and map the result to [0, 1] at the end (``squash``);
+- ``disorder`` animates every lattice point around a circle (a phase shift, period 1): continuous
+  and differentiable, and disorder 0 and 1 give the same pattern;
+- separable evaluation: interpolating a lattice along x then y needs gathers over (n x size) and
+  (size x size) elements only, so a layer costs O(size^2) whatever its frequency.
+"""
+from __future__ import annotations
+
+import math
+import zlib
+from typing import Callable, Sequence
+
+import torch
+import torch.nn.functional as F
+
+from .common import param4d, sample_wrap
+
+__all__ = ["lattice_noise", "fractal_noise", "cellular_noise", "gaussian_spot_field", "white_lattice_noise",
+           "blend_scales", "domain_warp", "squash", "noise_batch"]
+
+TWO_PI = 2 * math.pi
+MAX_CELLS = 1024          # finest lattice any generator uses (cells across the image)
+# empirical standard deviations of one layer at disorder 0 (used to normalise layers to unit std)
+_STD = {("value", "quintic"): 0.547, ("value", "cubic"): 0.518, ("value", "linear"): 0.464,
+        ("value", "nearest"): 0.707, ("gradient", "quintic"): 0.215, ("gradient", "cubic"): 0.211,
+        ("gradient", "linear"): 0.209, ("gradient", "nearest"): 0.209}
+
+
+# ----------------------------------------------------------------------------------------------
+# random lattices
+def _rng(seed: int, *keys) -> torch.Generator:
+    """A CPU generator seeded from the node seed and any keys (names, lattice sizes)."""
+    h = zlib.crc32(repr((int(seed),) + tuple(keys)).encode()) & 0xFFFFFFFF
+    return torch.Generator().manual_seed(h * 2654435761 % (2 ** 62) + int(seed) % 997)
+
+
+def _phases(seed: int, key, ny: int, nx: int, device, dtype) -> tuple[torch.Tensor, torch.Tensor]:
+    """Per-lattice-point phase (turns) and disorder speed (+1 or -1), each (1, ny, nx)."""
+    g = _rng(seed, key, ny, nx)
+    phi = torch.rand(1, ny, nx, generator=g, dtype=torch.float64)
+    speed = torch.randint(0, 2, (1, ny, nx), generator=g).to(torch.float64) * 2 - 1
+    return phi.to(device=device, dtype=dtype), speed.to(device=device, dtype=dtype)
+
+
+def _uniforms(seed: int, key, n: int, count: int, device, dtype) -> torch.Tensor:
+    """``count`` uniform [0, 1) values per cell of an n x n lattice: (count, n * n)."""
+    g = _rng(seed, key, n, count)
+    return torch.rand(count, n * n, generator=g, dtype=torch.float64).to(device=device, dtype=dtype)
+
+
+def _as_batch(d, device, dtype) -> torch.Tensor:
+    """A parameter as a (B, 1, 1) tensor (B = 1 for a number)."""
+    t = param4d(0.0 if d is None else d).to(device=device, dtype=dtype)
+    return t.reshape(t.shape[0], 1, 1)
+
+
+def _supersample(size: int, cells: int) -> int:
+    """Supersampling factor so that a render has >= 2 samples per cell (at most 4 x)."""
+    ss = 1
+    while size * ss < 2 * cells and ss < 4:
+        ss *= 2
+    return ss
+
+
+def _fade(t: torch.Tensor, interp: str) -> torch.Tensor:
+    if interp == "quintic":
+        return t * t * t * (t * (t * 6 - 15) + 10)
+    if interp == "cubic":
+        return t * t * (3 - 2 * t)
+    if interp == "linear":
+        return t
+    return torch.zeros_like(t)     # nearest: the lower lattice point, positions are cell-centred
+
+
+def _axis(res: int, n: int, device, dtype, interp: str, offset: float = 0.0):
+    """Lattice indices (i0, i1), fraction and fade weight of ``res`` pixel centres on an n-cell axis
+    whose lattice points sit ``offset`` cells in from the image edge."""
+    c = (torch.arange(res, device=device, dtype=torch.float64) + 0.5) / res * n - offset
+    if interp == "nearest":
+        i0 = torch.floor(c).long() % n
+        f = torch.zeros(res, dtype=torch.float64, device=device)
+    else:
+        i0 = torch.floor(c).long()
+        f = c - i0
+        i0 = i0 % n
+    i1 = (i0 + 1) % n
+    f = f.to(dtype)
+    return i0, i1, f, _fade(f, interp)
+
+
+def lattice_noise(cells, size: int, *, seed: int = 0, key="lattice", kind: str = "gradient",
+                  interp: str = "quintic", disorder=0.0, device=None, dtype=torch.float32) -> torch.Tensor:
+    """One layer of tileable lattice noise, zero mean and unit standard deviation: (B, 1, size, size).
+
+    ``cells`` is an int or (nx, ny): lattice cells across and down the image (anisotropic when they
+    differ). ``kind`` "value" interpolates random values, "gradient" is Perlin's gradient noise;
+    ``interp`` is the fade ("quintic", "cubic", "linear", "nearest"). ``disorder`` (number or (B, 1))
+    phase-shifts every lattice point (value = cos, gradient direction = angle of the phase).
+    """
+    nx, ny = (cells, cells) if isinstance(cells, int) else (int(cells[0]), int(cells[1]))
+    nx, ny = max(nx, 1), max(ny, 1)
+    phi, speed = _phases(seed, (key, kind), ny, nx, device, dtype)
+    d = _as_batch(disorder, device, dtype)
+    theta = TWO_PI * (phi + speed * d)                                   # (B, ny, nx)
+    ssx, ssy = _supersample(size, nx), _supersample(size, ny)
+    ss = max(ssx, ssy)
+    res = size * ss
+    # any lattice offset tiles; value noise is flattest at its lattice points and gradient noise
+    # steepest there, so value lattices sit on the image edge and gradient ones half a cell in.
+    off = 0.0 if kind == "value" else 0.5
+    ix0, ix1, fx, wx = _axis(res, nx, device, dtype, interp, off)
+    iy0, iy1, fy, wy = _axis(res, ny, device, dtype, interp, off)
+    wy_, fy_ = wy[:, None], fy[:, None]
+    if kind == "value":
+        lat = torch.cos(theta)
+        t = torch.lerp(lat.index_select(-1, ix0), lat.index_select(-1, ix1), wx)       # (B, ny, res)
+        out = torch.lerp(t.index_select(1, iy0), t.index_select(1, iy1), wy_)
+    elif kind == "gradient":
+        gx, gy = torch.cos(theta), torch.sin(theta)
+        if interp == "nearest":
+            interp_ = "linear"
+            ix0, ix1, fx, wx = _axis(res, nx, device, dtype, interp_, off)
+            iy0, iy1, fy, wy = _axis(res, ny, device, dtype, interp_, off)
+            wy_, fy_ = wy[:, None], fy[:, None]
+        a = gx.index_select(-1, ix0) * ((1 - wx) * fx) + gx.index_select(-1, ix1) * (wx * (fx - 1))
+        b = torch.lerp(gy.index_select(-1, ix0), gy.index_select(-1, ix1), wx)
+        out = torch.lerp(a.index_select(1, iy0), a.index_select(1, iy1), wy_)
+        out = out + b.index_select(1, iy0) * ((1 - wy_) * fy_) + b.index_select(1, iy1) * (wy_ * (fy_ - 1))
+    else:
+        raise ValueError(f"lattice_noise: unknown kind {kind!r}")
+    out = out[:, None] / _STD[(kind, interp)]
+    if ss > 1:
+        out = F.avg_pool2d(out, ss)
+    return out
+
+
+def fractal_noise(cells, size: int, *, octaves: int, roughness=0.5, seed: int = 0, key="fractal",
+                  kind: str = "gradient", interp: str = "quintic", disorder=0.0, lacunarity: int = 2,
+                  mode: str = "fbm", first_octave: int = 0, device=None, dtype=torch.float32) -> torch.Tensor:
+    """A fractal sum of lattice layers, zero mean and about unit std: (B, 1, size, size).
+
+    Octave o has ``cells * lacunarity**o`` cells and weight ``roughness**o`` (roughness a number or
+    (B, 1), differentiable). ``mode``: "fbm" (plain sum), "ridged" (sum of 1 - 2|layer|, sharp
+    crests), "billow" (sum of 2|layer| - 1, puffy). Octaves finer than MAX_CELLS are dropped (their
+    weight is negligible at every size the engine renders); octaves with fewer than two pixels a cell are
+    left out of the render (an anti-aliasing prefilter) but kept in the normalisation, so the other
+    octaves have the same amplitude at every size.
+    """
+    nx, ny = (cells, cells) if isinstance(cells, int) else (int(cells[0]), int(cells[1]))
+    r = param4d(roughness).to(device=device, dtype=dtype)
+    total = None
+    norm = 0.0
+    for o in range(first_octave, first_octave + octaves):
+        f = lacunarity ** o
+        cx, cy = nx * f, ny * f
+        if max(cx, cy) > MAX_CELLS and o > first_octave:
+            break
+        w = r ** (o - first_octave)
+        norm = norm + w * w               # the norm counts every octave, rendered or not
+        if 2 * max(cx, cy) > size and o > first_octave:
+            continue                      # above Nyquist (< 2 pixels a cell): removed (prefilter)
+        layer = lattice_noise((cx, cy), size, seed=seed, key=(key, o), kind=kind, interp=interp,
+                              disorder=disorder, device=device, dtype=dtype)
+        if mode == "ridged":
+            layer = (1 - 1.6 * layer.abs()) / 0.75
+        elif mode == "billow":
+            layer = (1.6 * layer.abs() - 1.28) / 0.96
+        total = layer * w if total is None else total + layer * w
+    return total / torch.sqrt(norm)
+
+
+# ----------------------------------------------------------------------------------------------
+# cellular fields
+def _cell_grid(size: int, n: int, device, dtype):
+    ss = _supersample(size, n)
+    res = size * ss
+    c = (torch.arange(res, device=device, dtype=dtype) + 0.5) / res * n
+    ci = torch.floor(c.detach()).long()
+    return ss, res, ci, c - ci.to(dtype)
+
+
+def _feature_points(n: int, seed: int, key, jitter, disorder, device, dtype):
+    """Feature point offsets inside each cell, (B, n*n) each for x and y, plus 4 random attributes."""
+    u = _uniforms(seed, key, n, 7, device, dtype)                       # (7, n*n)
+    j = _as_batch(jitter, device, dtype).reshape(-1, 1)
+    d = _as_batch(disorder, device, dtype).reshape(-1, 1)
+    speed = torch.where(u[6] < 0.5, -1.0, 1.0).to(dtype)
+    ang = TWO_PI * (u[2] + speed * d)
+    ang0 = TWO_PI * u[2]
+    px = 0.5 + j * 0.42 * (u[0] * 2 - 1) + 0.12 * (torch.cos(ang) - torch.cos(ang0))
+    py = 0.5 + j * 0.42 * (u[1] * 2 - 1) + 0.12 * (torch.sin(ang) - torch.sin(ang0))
+    return px, py, u[3:6]
+
+
+def _neighbours(size: int, n: int, device, dtype):
+    """For each of the 9 neighbour cells: flat cell index (res, res) and the pixel's position
+    relative to that cell's corner, (res, 1) in x and (res,) broadcast in y."""
+    ss, res, ci, cf = _cell_grid(size, n, device, dtype)
+    out = []
+    for dy in (-1, 0, 1):
+        for dx in (-1, 0, 1):
+            cx = (ci + dx) % n
+            cy = (ci + dy) % n
+            flat = cy[:, None] * n + cx[None, :]
+            rx = (cf - dx)[None, :]
+            ry = (cf - dy)[:, None]
+            out.append((flat, rx, ry))
+    return ss, out
+
+
+def _take(values: torch.Tensor, flat: torch.Tensor) -> torch.Tensor:
+    """values (B, n*n) at the flat cell indices (res, res): (B, res, res)."""
+    return values.index_select(-1, flat.reshape(-1)).reshape(values.shape[0], *flat.shape)
+
+
+def cellular_noise(cells: int, size: int, *, seed: int = 0, key="cells", jitter=1.0, disorder=0.0,
+                   device=None, dtype=torch.float32) -> dict:
+    """Worley (cellular) fields on an n x n jittered grid that wraps.
+
+    Returns a dict of (B, 1, size, size) tensors: ``f1`` and ``f2`` (distances to the nearest and
+    second-nearest feature point, in cells), ``value`` (a uniform random value of the nearest cell),
+    ``facet`` (a random plane across the nearest cell: the value plus a random slope times the
+    offset from its feature point, the look of crystal facets).
+    """
+    n = max(int(cells), 1)
+    px, py, attr = _feature_points(n, seed, key, jitter, disorder, device, dtype)
+    ss, neigh = _neighbours(size, n, device, dtype)
+    sx = (attr[1] * 2 - 1)[None]
+    sy = (attr[2] * 2 - 1)[None]
+    val = attr[0][None]
+    d1 = d2 = v1 = fc1 = None
+    for flat, rx, ry in neigh:
+        ox = rx - _take(px, flat)                                       # (B, res, res)
+        oy = ry - _take(py, flat)
+        dist = ox * ox + oy * oy
+        v = _take(val, flat)
+        fc = v + 0.6 * (_take(sx, flat) * ox + _take(sy, flat) * oy)
+        if d1 is None:
+            d1, d2, v1, fc1 = dist, torch.full_like(dist, 1e4), v, fc
+            continue
+        closer = dist < d1
+        d2 = torch.where(closer, d1, torch.minimum(d2, dist))
+        d1 = torch.where(closer, dist, d1)
+        v1 = torch.where(closer, v.expand_as(v1) if v.shape != v1.shape else v, v1)
+        fc1 = torch.where(closer, fc, fc1)
+    out = {"f1": torch.sqrt(d1 + 1e-12), "f2": torch.sqrt(d2 + 1e-12), "value": v1, "facet": fc1}
+    out = {k: v[:, None] for k, v in out.items()}
+    if ss > 1:
+        out = {k: F.avg_pool2d(v, ss) for k, v in out.items()}
+    return out
+
+
+def gaussian_spot_field(cells: int, size: int, *, seed: int = 0, key="spots", radius=0.35, jitter=1.0,
+                        disorder=0.0, density=1.0, device=None, dtype=torch.float32) -> torch.Tensor:
+    """A sum of Gaussian bumps, one per lattice cell at a jittered point, random amplitude and
+    random size (radius in cells, x [0.5, 1.5]); a cell shows its spot when its random draw is
+    below ``density`` (smoothly, so density is differentiable). Returns (B, 1, size, size) >= 0.
+    """
+    n = max(int(cells), 1)
+    px, py, attr = _feature_points(n, seed, key, jitter, disorder, device, dtype)
+    ss, neigh = _neighbours(size, n, device, dtype)
+    rad = _as_batch(radius, device, dtype).reshape(-1, 1) * (0.5 + attr[1])   # (B, n*n)
+    dens = _as_batch(density, device, dtype).reshape(-1, 1)
+    amp = (0.4 + 0.6 * attr[0]) * torch.sigmoid((dens - attr[2]) * 12.0)
+    total = 0.0
+    for flat, rx, ry in neigh:
+        ox = rx - _take(px, flat)
+        oy = ry - _take(py, flat)
+        r = _take(rad, flat)
+        total = total + _take(amp, flat) * torch.exp(-(ox * ox + oy * oy) / (2 * r * r))
+    out = total[:, None]
+    if ss > 1:
+        out = F.avg_pool2d(out, ss)
+    return out
+
+
+def white_lattice_noise(size: int, *, cells: int = 512, seed: int = 0, key="white", device=None,
+                        dtype=torch.float32) -> torch.Tensor:
+    """Uniform white noise on a fixed texture-space lattice of ``cells`` x ``cells`` values:
+    shown as blocks above that size, box-averaged below it. (1, 1, size, size) in [0, 1]."""
+    g = _rng(seed, key, cells)
+    lat = torch.rand(1, 1, cells, cells, generator=g, dtype=torch.float64).to(device=device, dtype=dtype)
+    if size >= cells:
+        return lat.repeat_interleave(size // cells, -1).repeat_interleave(size // cells, -2)
+    return F.avg_pool2d(lat, cells // size)
+
+
+# ----------------------------------------------------------------------------------------------
+# composition helpers
+def noise_batch(*params) -> int:
+    """The batch size B the (number or (k,) or (B, k)) parameters broadcast to."""
+    b = 1
+    for p in params:
+        if isinstance(p, torch.Tensor) and p.dim() >= 2:
+            b = max(b, p.shape[0])
+    return b
+
+
+def blend_scales(scale, render: Callable[[int, torch.Tensor], torch.Tensor], *, batch: int = 1,
+                 device=None, dtype=torch.float32) -> torch.Tensor:
+    """A continuous scale from integer-frequency renders.
+
+    ``render(k, idx)`` returns the zero-mean unit-std noise at integer scale k for the batch rows
+    ``idx`` (a LongTensor), shape (len(idx), 1, S, S). The scale s (number or (B, 1)) gives
+    ``((1 - t) A + t B) / sqrt((1 - t)^2 + t^2)`` with A, B the renders at floor(s) and floor(s) + 1
+    and t the fraction: continuous across integers (t -> 1 gives the next integer's render),
+    differentiable in s, and the normalisation keeps the contrast of a single render.
+    """
+    s = param4d(scale).to(device=device, dtype=dtype).reshape(-1)
+    s = torch.clamp(s, min=1.0)
+    if s.shape[0] == 1 and batch > 1:
+        s = s.expand(batch)
+    nb = s.shape[0]
+    k0 = torch.floor(s.detach() + 1e-4)          # snap within 1e-4 of an integer (float round-off)
+    t = s - k0
+    need_upper = s.requires_grad or bool((t.detach().abs() > 1e-4).any())
+    wanted: dict[int, list[int]] = {}
+    for b in range(nb):
+        k = int(k0[b])
+        wanted.setdefault(k, []).append(b)
+        if need_upper:
+            wanted.setdefault(k + 1, []).append(b)
+    renders = {}
+    for k, rows in wanted.items():
+        idx = torch.tensor(rows, dtype=torch.long)
+        img = render(k, idx)
+        renders[k] = {b: img[i if img.shape[0] > 1 else 0] for i, b in enumerate(rows)}
+    lo = torch.stack([renders[int(k0[b])][b] for b in range(nb)])
+    if not need_upper:
+        return lo
+    hi = torch.stack([renders[int(k0[b]) + 1][b] for b in range(nb)])
+    t = t.reshape(-1, 1, 1, 1)
+    return ((1 - t) * lo + t * hi) / torch.sqrt((1 - t) ** 2 + t ** 2)
+
+
+def domain_warp(img: torch.Tensor, du: torch.Tensor, dv: torch.Tensor, amount) -> torch.Tensor:
+    """Sample ``img`` at (u + amount du, v + amount dv), wrapping; amount in texture units, a number
+    or (B, 1); differentiable in everything."""
+    size = img.shape[-1]
+    c = (torch.arange(size, device=img.device, dtype=img.dtype) + 0.5) / size
+    v, u = torch.meshgrid(c, c, indexing="ij")
+    a = param4d(amount, img)
+    uu = u[None, None] + a * du
+    vv = v[None, None] + a * dv
+    b = max(img.shape[0], uu.shape[0])
+    if img.shape[0] != b:
+        img = img.expand(b, -1, -1, -1)
+    return sample_wrap(img, uu.expand(b, -1, -1, -1), vv.expand(b, -1, -1, -1))
+
+
+def squash(x: torch.Tensor, gain=1.0, offset=0.0) -> torch.Tensor:
+    """Map a zero-mean signal to (0, 1) smoothly: 0.5 + 0.5 tanh(gain x + offset)."""
+    return 0.5 + 0.5 * torch.tanh(x * gain + offset)
+
+
+def select_rows(p, idx: torch.Tensor):
+    """Rows ``idx`` of a batched (B, k) parameter; numbers and unbatched tensors pass through."""
+    if isinstance(p, torch.Tensor) and p.dim() >= 2 and p.shape[0] > 1:
+        return p[idx.to(p.device)]
+    return p

@@ -1,0 +1,461 @@
+"""Pattern generators built from shapes: Shape, Polygon 1, the linear gradients, Normal Color,
+Stripes, Scratches Generator and Creased — and the shared primitives every pattern generator
+(here, ``pattern_tiles`` and ``pattern_cells``) is built from:
+
+- ``aa_coverage``: analytic anti-aliasing of an implicit edge (a C1 smoothstep one pixel wide), so
+  edges are resolution-independent and differentiable;
+- ``shape_profile``: the library of shapes of Substance's Shape / Tile Generator (square, disc,
+  paraboloid, bell, gaussian, thorn, pyramid, brick, gradation, waves, half bell, ridged bell,
+  crescent, capsule, cone, hemisphere), each a height in [0, 1] on local coordinates where the
+  shape fills the square [-1, 1]²;
+- ``lattice_random``: per-cell random values of a lattice, drawn from a seeded ``torch.Generator``;
+- ``tile_field``: a grid of cells (row offset for bricks) holding one shape each, with per-cell
+  random position, scale, rotation, luminance and masking; each pixel evaluates its own cell, or
+  the 3×3 (5×5) neighbourhood when shapes may spill over their cell.
+
+All coordinates are texture units (1 = image width); every lattice has an integer number of cells
+per image, so every output tiles. Angles are in turns.
+"""
+from __future__ import annotations
+
+import math
+from typing import Callable
+
+import torch
+
+from ..errors import DiffMatError
+from .common import lerp, param4d, pixel_grid
+
+__all__ = ["shape_pattern", "polygon_pattern", "linear_gradient", "mirrored_linear_gradient",
+           "smooth_linear_gradient", "normal_color", "stripes", "scratches", "creased"]
+
+TAU = 2.0 * math.pi
+
+# Shape names in the order of Substance's Shape node "Pattern" list (enum value = index).
+SHAPES = ("square", "disc", "paraboloid", "bell", "gaussian", "thorn", "pyramid", "brick",
+          "gradation", "waves", "half_bell", "ridged_bell", "crescent", "capsule", "cone",
+          "hemisphere")
+
+
+# ----------------------------------------------------------------------------------------------
+# primitives
+# ----------------------------------------------------------------------------------------------
+def ref_tensor(device=None, dtype=torch.float32) -> torch.Tensor:
+    """An empty tensor carrying ``device`` and ``dtype`` (for ``param4d``)."""
+    return torch.empty(0, device=device, dtype=dtype)
+
+
+def smoothstep01(t: torch.Tensor) -> torch.Tensor:
+    t = t.clamp(0.0, 1.0)
+    return t * t * (3.0 - 2.0 * t)
+
+
+def aa_coverage(f: torch.Tensor, width) -> torch.Tensor:
+    """Coverage of the region ``f < 0`` where ``f`` is a distance-like implicit function and
+    ``width`` one pixel in the same units: a C1 smoothstep from 1 (inside) to 0 over one pixel,
+    0.5 on the edge."""
+    return smoothstep01(0.5 - f / width)
+
+
+def safe_sqrt(x: torch.Tensor) -> torch.Tensor:
+    """sqrt with a finite gradient at 0 (0 for x <= 0)."""
+    return torch.sqrt(x.clamp_min(1e-12)) * (x > 0)
+
+
+def safe_hypot(x: torch.Tensor, y: torch.Tensor) -> torch.Tensor:
+    return torch.sqrt(x * x + y * y + 1e-12)
+
+
+def lattice_random(seed: int, channels: int, cells: int, device=None, dtype=torch.float32) -> torch.Tensor:
+    """(channels, cells) uniform values in [0, 1) from ``torch.Generator().manual_seed(seed)``."""
+    g = torch.Generator().manual_seed(int(seed) % (2 ** 63))
+    return torch.rand(channels, cells, generator=g).to(device=device, dtype=dtype)
+
+
+def check_int(value, name: str, lo: int, hi: int) -> int:
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or int(value) != value or not lo <= value <= hi:
+        raise DiffMatError(f"{name}: expected an integer in [{lo}, {hi}], got {value!r}")
+    return int(value)
+
+
+def check_enum(value, name: str, choices) -> int:
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or int(value) != value or int(value) not in choices:
+        raise DiffMatError(f"{name}: unknown value {value!r}; expected one of {list(choices)}")
+    return int(value)
+
+
+# ----------------------------------------------------------------------------------------------
+# the shape library
+# ----------------------------------------------------------------------------------------------
+def _bell(r):
+    return 0.5 + 0.5 * torch.cos(math.pi * r.clamp(max=1.0))
+
+
+def shape_profile(name: str, x: torch.Tensor, y: torch.Tensor, w, spec) -> torch.Tensor:
+    """Height in [0, 1] of shape ``name`` at local coordinates (x, y) (the shape fills [-1, 1]²,
+    y downwards). ``w``: one pixel in local units (anti-aliasing); ``spec``: Substance's "pattern
+    specific" control in [0, 1] (bevel, frequency, offset… depending on the shape)."""
+    ax, ay = x.abs(), y.abs()
+    box = aa_coverage(torch.maximum(ax, ay) - 1.0, w)
+    if name == "square":
+        return box
+    r = safe_hypot(x, y)
+    disc = aa_coverage(r - 1.0, w)
+    if name == "disc":
+        return disc
+    if name == "paraboloid":
+        return (1.0 - r * r).clamp_min(0.0)
+    if name == "bell":
+        return _bell(r)
+    if name == "gaussian":
+        e = math.exp(-4.5)
+        return ((torch.exp(-4.5 * r * r) - e) / (1.0 - e)).clamp_min(0.0)
+    if name == "thorn":
+        return (1.0 - r).clamp_min(0.0) ** (1.5 + 2.5 * spec)
+    if name == "pyramid":
+        return (1.0 - torch.maximum(ax, ay)).clamp_min(0.0)
+    if name == "brick":
+        bevel = 0.02 + 0.5 * spec
+        return ((1.0 - torch.maximum(ax, ay)) / bevel).clamp(0.0, 1.0)
+    if name == "gradation":
+        return box * ((x + 1.0) * 0.5).clamp(0.0, 1.0)
+    if name == "waves":
+        k = 1.0 + 4.0 * spec
+        return box * (0.5 + 0.5 * torch.cos(math.pi * k * x))
+    if name == "half_bell":
+        return _bell(r) * aa_coverage(y, w)
+    if name == "ridged_bell":
+        return 1.0 - torch.sin(0.5 * math.pi * r.clamp(max=1.0))
+    if name == "crescent":
+        shift = 0.2 + 0.6 * spec
+        inner = aa_coverage(safe_hypot(x - shift, y) - 0.9, w)
+        return disc * (1.0 - inner)
+    if name == "capsule":
+        rad = 0.25 + 0.5 * spec
+        px = (ax - (1.0 - rad)).clamp_min(0.0)
+        d = safe_hypot(px, y) / rad
+        return safe_sqrt(1.0 - d * d) * aa_coverage((d - 1.0) * rad, w)
+    if name == "cone":
+        return (1.0 - r).clamp_min(0.0)
+    if name == "hemisphere":
+        return safe_sqrt(1.0 - r * r)
+    raise DiffMatError(f"pattern: unknown shape {name!r}")
+
+
+def polygon_profile(sides: int, gradient, curve) -> Callable:
+    """A profile function for a regular polygon (circumradius 1, one vertex up): flat inside with
+    its edge anti-aliased; ``gradient`` in [0, 1] blends towards a pyramid-like falloff from the
+    centre, ``curve`` bends that falloff (0 linear … 1 rounded)."""
+    sector = TAU / sides
+    apothem = math.cos(math.pi / sides)
+
+    def profile(x, y, w, spec, ex=None, ey=None):
+        a = torch.atan2(x, -y)
+        a = torch.remainder(a, sector) - 0.5 * sector
+        r = safe_hypot(x, y)
+        d = r * torch.cos(a)  # distance along the sector's apothem direction
+        flat = aa_coverage(d - apothem, w)
+        t = (1.0 - d / apothem).clamp(0.0, 1.0)
+        shaped = lerp(t, 1.0 - (1.0 - t) ** 2, curve)
+        return flat * lerp(torch.ones_like(t), shaped, gradient)
+
+    return profile
+
+
+# ----------------------------------------------------------------------------------------------
+# the tiled-cell layout
+# ----------------------------------------------------------------------------------------------
+RND_LUM, RND_MASK, RND_SCALE, RND_PX, RND_PY, RND_ROT, RND_SPEC, RND_R, RND_G, RND_B = range(10)
+N_RND = 10
+
+
+def _split2(value, ref):
+    t = param4d(value, ref)
+    if t.shape[1] == 1:
+        return t, t
+    return t[:, 0:1], t[:, 1:2]
+
+
+def tile_field(size: int, nx: int, ny: int, *, seed: int, profile: Callable, scale=1.0, size_xy=(1.0, 1.0),
+               interstice=(0.0, 0.0), offset=0.0, position_random=0.0, scale_random=0.0, rotation=0.0,
+               rotation_random=0.0, luminance_random=0.0, mask_random=0.0, pattern_specific=0.5,
+               pattern_specific_random=0.0, softness=0.0, color_random=None, device=None, dtype=torch.float32):
+    """A grid of ``nx`` × ``ny`` cells, one shape per cell; every alternate row is shifted right by
+    ``offset`` cells. The shape fills its cell at scale 1 less the ``interstice`` gap (fraction of
+    the cell), times ``size_xy`` (non-uniform size). Per cell, from ``lattice_random(seed)``:
+    position jitter up to ±``position_random``/2 cells, scale × (1 - ``scale_random`` r), rotation
+    ``rotation`` ± ``rotation_random``/2 turns, luminance × (1 - ``luminance_random`` r), and the
+    cell is hidden when r < ``mask_random`` (a soft threshold, so mask_random is differentiable).
+
+    ``softness`` (local units, 1 = the half size) widens hard edges beyond the one-pixel
+    anti-aliasing. ``profile(x, y, w, spec, ex, ey)`` gives the shape's height at local coordinates
+    (the shape fills [-1, 1]²), ``w`` one pixel (plus softness) in local units, ``ex``/``ey`` the
+    half extents in texture units. Overlapping shapes combine by maximum. Returns ``(height, color)``: height (B, 1, H, W) and,
+    when ``color_random`` is given, the winning cell's random colour (B, 3, H, W) mixed towards
+    white by 1 - color_random, else None.
+    """
+    ref = ref_tensor(device, dtype)
+    u, v = pixel_grid(size, device, dtype)
+    rnd = lattice_random(seed, N_RND, nx * ny, device, dtype)
+    scale = param4d(scale, ref)
+    sx, sy = _split2(size_xy, ref)
+    ix, iy = _split2(interstice, ref)
+    offset = param4d(offset, ref)
+    position_random = param4d(position_random, ref)
+    scale_random = param4d(scale_random, ref)
+    rotation = param4d(rotation, ref)
+    rotation_random = param4d(rotation_random, ref)
+    luminance_random = param4d(luminance_random, ref)
+    mask_random = param4d(mask_random, ref)
+    spec = param4d(pattern_specific, ref)
+    spec_random = param4d(pattern_specific_random, ref)
+    softness = param4d(softness, ref)
+    cr = param4d(color_random, ref) if color_random is not None else None
+    # half extents of the shape in texture units
+    hx = (0.5 / nx) * (1.0 - ix).clamp_min(0.0) * scale * sx
+    hy = (0.5 / ny) * (1.0 - iy).clamp_min(0.0) * scale * sy
+
+    # neighbourhood needed: how far (in cells) a shape may reach from its cell centre
+    with torch.no_grad():
+        rotated = bool((torch.remainder(rotation * 4.0, 1.0) != 0).any() or (rotation_random != 0).any())
+        if rotated:
+            rad = torch.sqrt(hx * hx + hy * hy)
+            ext_x, ext_y = rad * nx, rad * ny
+        else:
+            rot_q = torch.remainder(torch.round(rotation * 4.0), 2.0)  # quarter turns swap axes
+            ext_x = torch.where(rot_q == 1, hy, hx) * nx
+            ext_y = torch.where(rot_q == 1, hx, hy) * ny
+        jit = 0.5 * position_random.abs()
+        grow = 1.0 + 0.5 * softness.abs()
+        reach = max(float((ext_x * grow + jit).max()) + nx / size, float((ext_y * grow + jit).max()) + ny / size)
+    ring = 0 if reach <= 0.5 else (1 if reach <= 1.5 else 2)
+    ring = min(ring, (max(nx, ny) - 1) // 2 + 1) if max(nx, ny) > 1 else ring
+
+    X, Y = u * nx, v * ny
+    row0 = torch.floor(Y)
+    pix = 1.0 / size
+    best = None
+    color = None
+    for dj in range(-ring, ring + 1):
+        r = row0 + dj
+        shift = offset * torch.remainder(r, 2.0)
+        xs = X - shift
+        c0 = torch.floor(xs)
+        fy = (Y - r - 0.5) / ny
+        for di in range(-ring, ring + 1):
+            c = c0 + di
+            fx = (xs - c - 0.5) / nx
+            idx = (torch.remainder(r, ny) * nx + torch.remainder(c, nx)).long()
+            idx = idx.expand(max(idx.shape[0], fx.shape[0]), -1, -1, -1)
+            vals = rnd[:, idx]  # (K, B, 1, H, W)
+            s = 1.0 - scale_random * vals[RND_SCALE]
+            dx = fx - position_random * (vals[RND_PX] - 0.5) / nx
+            dy = fy - position_random * (vals[RND_PY] - 0.5) / ny
+            ang = TAU * (rotation + rotation_random * (vals[RND_ROT] - 0.5))
+            ca, sa = torch.cos(ang), torch.sin(ang)
+            ex = (hx * s).clamp_min(1e-6)
+            ey = (hy * s).clamp_min(1e-6)
+            lx = (ca * dx + sa * dy) / ex
+            ly = (-sa * dx + ca * dy) / ey
+            w = pix / torch.sqrt(ex * ey)
+            sp = (spec + spec_random * (vals[RND_SPEC] - 0.5)).clamp(0.0, 1.0)
+            h = profile(lx, ly, w + softness, sp, ex, ey)
+            lum = 1.0 - luminance_random * vals[RND_LUM]
+            # soft mask: fully visible at mask_random = 0, fully hidden at mask_random = 1
+            vis = smoothstep01((vals[RND_MASK] - mask_random * 1.05) / 0.05 + 1.0)
+            h = h * lum * vis
+            if color_random is not None:
+                col = 1.0 - cr * (1.0 - torch.cat([vals[RND_R], vals[RND_G], vals[RND_B]], dim=1))
+            if best is None:
+                best = h
+                if color_random is not None:
+                    color = col.expand(h.shape[0], -1, -1, -1) if col.shape[0] < h.shape[0] else col
+            else:
+                if color_random is not None:
+                    color = torch.where(h > best, col, color)
+                best = torch.maximum(best, h)
+    return best.clamp(0.0, 1.0), color
+
+
+# ----------------------------------------------------------------------------------------------
+# Shape and Polygon 1
+# ----------------------------------------------------------------------------------------------
+def shape_pattern(*, pattern: int = 0, tiling: int = 1, pattern_specific=0.5, scale=1.0,
+                  size_xy=(1.0, 1.0), angle=0.0, rotation_45: bool = False, size: int = 512, seed: int = 0,
+                  device=None, dtype=torch.float32) -> torch.Tensor:
+    """Substance's Shape: ``tiling`` × ``tiling`` copies of one shape (``pattern`` indexes
+    ``SHAPES``), each filling its tile at ``scale`` 1, stretched by ``size_xy``, rotated by
+    ``angle`` turns (+1/8 with ``rotation_45``). Shapes that outgrow their tile overlap the
+    neighbours' (maximum)."""
+    name = SHAPES[check_enum(pattern, "shape.pattern", range(len(SHAPES)))]
+    tiling = check_int(tiling, "shape.tiling", 1, 64)
+    rot = param4d(angle, ref_tensor(device, dtype)) + (0.125 if rotation_45 else 0.0)
+    out, _ = tile_field(size, tiling, tiling, seed=seed,
+                        profile=lambda x, y, w, s, ex, ey: shape_profile(name, x, y, w, s),
+                        scale=scale, size_xy=size_xy, rotation=rot, pattern_specific=pattern_specific,
+                        device=device, dtype=dtype)
+    return out
+
+
+def polygon_pattern(*, sides: int = 3, tiling: int = 1, scale=0.8, rotation=0.0, gradient=0.0, curve=0.0,
+                    size: int = 512, seed: int = 0, device=None, dtype=torch.float32) -> torch.Tensor:
+    """Substance's Polygon 1: a regular polygon with ``sides`` sides, circumradius ``scale``/2 of
+    its tile, rotated by ``rotation`` turns; ``gradient`` fades it from the centre to its edge,
+    ``curve`` rounds that fade."""
+    sides = check_int(sides, "polygon_1.sides", 3, 64)
+    tiling = check_int(tiling, "polygon_1.tiling", 1, 64)
+    ref = ref_tensor(device, dtype)
+    prof = polygon_profile(sides, param4d(gradient, ref), param4d(curve, ref))
+    out, _ = tile_field(size, tiling, tiling, seed=seed, profile=prof, scale=scale, rotation=rotation,
+                        device=device, dtype=dtype)
+    return out
+
+
+# ----------------------------------------------------------------------------------------------
+# gradients
+# ----------------------------------------------------------------------------------------------
+def _axis_coordinate(size, rotation, device, dtype):
+    """Pixel-centre coordinate along the direction ``rotation`` snapped to quarter turns (a ramp
+    along another direction cannot tile): u at 0, v at 1/4, 1-u at 1/2, 1-v at 3/4. (B,1,H,W)."""
+    u, v = pixel_grid(size, device, dtype)
+    q = torch.remainder(torch.round(param4d(rotation, ref_tensor(device, dtype)) * 4.0), 4.0)
+    return torch.where(q == 0, u, torch.where(q == 1, v, torch.where(q == 2, 1.0 - u, 1.0 - v)))
+
+
+def _ramp(t: torch.Tensor, pw: float) -> torch.Tensor:
+    """A periodic 0→1 ramp of period 1 in ``t`` whose drop is anti-aliased over one pixel ``pw``
+    (the last pixel of each period reads 0.5), so the image tiles like every hard edge."""
+    f = torch.remainder(t, 1.0)
+    rise = f / (1.0 - pw)
+    fall = (1.0 - f) / pw
+    return torch.where(f < 1.0 - pw, rise, fall).clamp(0.0, 1.0)
+
+
+def linear_gradient(*, tiling: int = 1, rotation=0.0, size: int = 512, device=None,
+                    dtype=torch.float32) -> torch.Tensor:
+    """Gradient Linear 1: a black-to-white ramp repeated ``tiling`` times along the x axis,
+    turned by ``rotation`` (quarter turns)."""
+    tiling = check_int(tiling, "gradient_linear_1.tiling", 1, 256)
+    t = _axis_coordinate(size, rotation, device, dtype) * tiling
+    return _ramp(t, tiling / size)
+
+
+def mirrored_linear_gradient(*, tiling: int = 1, rotation=0.0, size: int = 512, device=None,
+                             dtype=torch.float32) -> torch.Tensor:
+    """Gradient Linear 2: a symmetric black-white-black ramp (white in the middle of each period)."""
+    tiling = check_int(tiling, "gradient_linear_2.tiling", 1, 256)
+    t = _axis_coordinate(size, rotation, device, dtype) * tiling
+    return 1.0 - (2.0 * torch.remainder(t, 1.0) - 1.0).abs()
+
+
+def smooth_linear_gradient(*, tiling: int = 1, rotation=0.0, position=0.5, size: int = 512, device=None,
+                           dtype=torch.float32) -> torch.Tensor:
+    """Gradient Linear 3: a smooth (cosine) black-white-black ramp whose white peak sits at
+    ``position`` of each period."""
+    tiling = check_int(tiling, "gradient_linear_3.tiling", 1, 256)
+    t = _axis_coordinate(size, rotation, device, dtype) * tiling
+    pos = param4d(position, ref_tensor(device, dtype))
+    return 0.5 + 0.5 * torch.cos(TAU * (t - pos))
+
+
+# ----------------------------------------------------------------------------------------------
+# Normal Color
+# ----------------------------------------------------------------------------------------------
+def normal_color(*, direction=0.0, slope_angle=0.0, invert_y: bool = False, size: int = 512, device=None,
+                 dtype=torch.float32) -> torch.Tensor:
+    """Normal Color: a flat normal map tilted by ``slope_angle`` (turns from the vertical) towards
+    ``direction`` (turns, 0 = +x); RGBA with rgb = n/2 + 1/2; ``invert_y`` flips green (DirectX)."""
+    ref = ref_tensor(device, dtype)
+    d = param4d(direction, ref) * TAU
+    s = param4d(slope_angle, ref) * TAU
+    nx = torch.sin(s) * torch.cos(d)
+    ny = torch.sin(s) * torch.sin(d)
+    if invert_y:
+        ny = -ny
+    nz = torch.cos(s)
+    rgb = torch.cat([nx, ny, nz], dim=1) * 0.5 + 0.5
+    rgba = torch.cat([rgb, torch.ones_like(nx)], dim=1)
+    return rgba.expand(-1, -1, size, size).clamp(0.0, 1.0)
+
+
+# ----------------------------------------------------------------------------------------------
+# Stripes
+# ----------------------------------------------------------------------------------------------
+def stripes(*, number: int = 10, width=0.5, softness=0.0, shift: int = 0, size: int = 512, device=None,
+            dtype=torch.float32) -> torch.Tensor:
+    """Stripes: ``number`` white stripes per image along x (vertical bands), each ``width`` of its
+    period wide, edges softened over ``softness`` of the half period; ``shift`` (integer, so it
+    tiles) slants them by shifting the stripe pattern ``shift`` periods over the image height."""
+    number = check_int(number, "stripes.number", 1, 512)
+    shift = check_int(shift, "stripes.shift", -64, 64)
+    ref = ref_tensor(device, dtype)
+    u, v = pixel_grid(size, device, dtype)
+    t = u * number + v * shift
+    d = (torch.remainder(t, 1.0) - 0.5).abs()  # distance from the stripe centre, in periods
+    half = 0.5 * param4d(width, ref)
+    soft = param4d(softness, ref) * 0.5
+    pw = number / size
+    return aa_coverage((d - half) / (soft + pw) * pw, pw)
+
+
+# ----------------------------------------------------------------------------------------------
+# Scratches
+# ----------------------------------------------------------------------------------------------
+def scratches(*, amount: int = 6, length=1.6, width=0.02, angle=0.0, angle_random=0.5,
+              length_random=0.5, luminance_random=0.5, mask_random=0.0, size: int = 512, seed: int = 0,
+              device=None, dtype=torch.float32) -> torch.Tensor:
+    """Scratches Generator (simplified): an ``amount`` × ``amount`` lattice of cells, each holding
+    one thin line (a capsule) of ``length`` cell lengths (× 1 - length_random r) and ``width`` of
+    a cell, oriented ``angle`` ± ``angle_random``/2 turns, luminance × 1 - luminance_random r; two
+    staggered lattices so lines cross cell borders. Lines taper towards their ends."""
+    amount = check_int(amount, "scratches_generator.amount", 1, 256)
+    ref = ref_tensor(device, dtype)
+    length = param4d(length, ref)
+    width = param4d(width, ref)
+    b = max(length.shape[0], width.shape[0])
+    size_xy = torch.cat([length.expand(b, 1, 1, 1), width.expand(b, 1, 1, 1)], dim=1)
+
+    def line(x, y, w, s, ex, ey):
+        # local units: the segment spans x in [-1, 1]; |y| = 1 is its half width at the middle
+        taper = safe_sqrt(1.0 - x * x)
+        ratio = torch.sqrt(ex / ey)  # one pixel is w·ratio local units across the line
+        return aa_coverage(y.abs() - taper, w * ratio) * aa_coverage(x.abs() - 1.0, w / ratio)
+
+    out = None
+    for layer in range(2):
+        h, _ = tile_field(size, amount, amount, seed=seed * 2 + layer + 1, profile=line, scale=1.0,
+                          size_xy=size_xy, position_random=1.0, scale_random=length_random,
+                          rotation=angle, rotation_random=angle_random, luminance_random=luminance_random,
+                          mask_random=mask_random, offset=0.5 * layer, device=device, dtype=dtype)
+        out = h if out is None else torch.maximum(out, h)
+    return out
+
+
+# ----------------------------------------------------------------------------------------------
+# Creased
+# ----------------------------------------------------------------------------------------------
+def creased(*, scale: int = 4, disorder=0.0, folds: int = 12, size: int = 512, seed: int = 0, device=None,
+            dtype=torch.float32) -> torch.Tensor:
+    """Creased: crumpled-paper creases, a sum of ``folds`` triangle waves (sharp ridges) along random
+    integer directions (so it tiles) of about ``scale`` creases per image, with random phases that
+    ``disorder`` (turns of phase) shifts smoothly; normalised to [0, 1]."""
+    scale = check_int(scale, "creased.scale", 1, 256)
+    folds = check_int(folds, "creased.folds", 1, 64)
+    ref = ref_tensor(device, dtype)
+    g = torch.Generator().manual_seed(int(seed) % (2 ** 63))
+    dirs = torch.randint(-scale, scale + 1, (folds, 2), generator=g)
+    dirs[(dirs == 0).all(dim=1)] = torch.tensor([scale, 1])
+    phase = torch.rand(folds, generator=g)
+    amp = 0.5 + torch.rand(folds, generator=g)
+    speed = torch.rand(folds, generator=g) * 2.0 - 1.0
+    u, v = pixel_grid(size, device, dtype)
+    dis = param4d(disorder, ref)
+    acc = 0.0
+    for k in range(folds):
+        t = u * float(dirs[k, 0]) + v * float(dirs[k, 1]) + float(phase[k]) + dis * float(speed[k])
+        tri = (2.0 * torch.remainder(t, 1.0) - 1.0).abs()  # triangle wave in [0, 1], sharp ridges
+        acc = acc + float(amp[k]) * tri
+    total = float(amp.sum())
+    out = acc / total
+    # spread the (roughly Gaussian) sum around its mean 0.5 to use the whole range
+    return (0.5 + (out - 0.5) * 2.5).clamp(0.0, 1.0)

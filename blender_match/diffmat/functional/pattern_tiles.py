@@ -1,0 +1,271 @@
+"""Tile-layout pattern generators: Tile Generator (grayscale and colour), Tile Sampler
+(simplified), Brick Generator, Checker 1, Parquet 1, Weave Generator, Mesh 1 and Splatter
+Circular. All are built on the shared primitives of ``pattern_shapes`` (``tile_field``, the shape
+library, ``aa_coverage``, ``lattice_random``); see that module for the conventions.
+"""
+from __future__ import annotations
+
+import math
+
+import torch
+import torch.nn.functional as F
+
+from .common import param4d, pixel_grid, to_gray
+from .pattern_shapes import (SHAPES, TAU, aa_coverage, check_enum, check_int, lattice_random, ref_tensor,
+                             safe_hypot, safe_sqrt, shape_profile, smoothstep01, tile_field)
+
+__all__ = ["tile_pattern", "tile_pattern_color", "tile_sampler_pattern", "brick_pattern", "checker_pattern",
+           "parquet_pattern", "weave_pattern", "mesh_pattern", "circular_splatter"]
+
+# Tile Generator "Pattern" list: 0 is the image input, then the shape library in Substance's order.
+TILE_PATTERNS = ("image",) + SHAPES[:15]
+
+
+def _image_profile(image):
+    """A profile reading a grayscale ``image`` stretched over the shape's [-1, 1]² square."""
+    img = to_gray(image)
+
+    def profile(x, y, w, spec, ex=None, ey=None):
+        b = max(x.shape[0], img.shape[0])
+        grid = torch.stack([x[:, 0], y[:, 0]], dim=-1)
+        grid = grid.expand(b, -1, -1, -1)
+        src = img.to(dtype=x.dtype, device=x.device).expand(b, -1, -1, -1)
+        return F.grid_sample(src, grid, mode="bilinear", padding_mode="zeros", align_corners=False)
+
+    return profile
+
+
+def _pattern_profile(pattern: int, image, where: str):
+    name = TILE_PATTERNS[check_enum(pattern, f"{where}.pattern", range(len(TILE_PATTERNS)))]
+    if name == "image":
+        if image is None:  # nothing connected: Substance draws nothing
+            return lambda x, y, w, s, ex=None, ey=None: torch.zeros_like(x)
+        return _image_profile(image)
+    return lambda x, y, w, s, ex=None, ey=None: shape_profile(name, x, y, w, s)
+
+
+def tile_pattern(pattern_input_1=None, *, x_amount: int = 10, y_amount: int = 10, pattern: int = 1,
+                 pattern_specific=0.5, scale=1.0, size_xy=(1.0, 1.0), interstice=(0.0, 0.0), offset=0.0,
+                 position_random=0.0, scale_random=0.0, rotation=0.0, rotation_random=0.0, luminance_random=0.0,
+                 mask_random=0.0, softness=0.0, size: int = 512, seed: int = 0, device=None,
+                 dtype=torch.float32) -> torch.Tensor:
+    """Tile Generator: an ``x_amount`` × ``y_amount`` grid of one pattern (``TILE_PATTERNS``;
+    0 reads ``pattern_input_1``), every alternate row offset by ``offset`` cells, with per-tile
+    random position, scale, rotation, luminance and masking (see ``tile_field``)."""
+    nx = check_int(x_amount, "tile_generator.x_amount", 1, 256)
+    ny = check_int(y_amount, "tile_generator.y_amount", 1, 256)
+    profile = _pattern_profile(pattern, pattern_input_1, "tile_generator")
+    out, _ = tile_field(size, nx, ny, seed=seed, profile=profile, scale=scale, size_xy=size_xy,
+                        interstice=interstice, offset=offset, position_random=position_random,
+                        scale_random=scale_random, rotation=rotation, rotation_random=rotation_random,
+                        luminance_random=luminance_random, mask_random=mask_random,
+                        pattern_specific=pattern_specific, softness=softness, device=device, dtype=dtype)
+    return out
+
+
+def tile_pattern_color(pattern_input_1=None, *, x_amount: int = 10, y_amount: int = 10, pattern: int = 1,
+                       pattern_specific=0.5, scale=1.0, size_xy=(1.0, 1.0), interstice=(0.0, 0.0), offset=0.0,
+                       position_random=0.0, scale_random=0.0, rotation=0.0, rotation_random=0.0,
+                       luminance_random=0.0, mask_random=0.0, softness=0.0, color_random=1.0,
+                       pattern_color=(1.0, 1.0, 1.0, 1.0), background_color=(0.0, 0.0, 0.0, 1.0),
+                       size: int = 512, seed: int = 0, device=None, dtype=torch.float32) -> torch.Tensor:
+    """Tile Generator Color: the tile layout of ``tile_pattern``; each tile takes
+    ``pattern_color`` × a random colour (mixed in by ``color_random``) × its height, over
+    ``background_color``. RGBA, opaque."""
+    nx = check_int(x_amount, "tile_generator_color.x_amount", 1, 256)
+    ny = check_int(y_amount, "tile_generator_color.y_amount", 1, 256)
+    profile = _pattern_profile(pattern, pattern_input_1, "tile_generator_color")
+    h, col = tile_field(size, nx, ny, seed=seed, profile=profile, scale=scale, size_xy=size_xy,
+                        interstice=interstice, offset=offset, position_random=position_random,
+                        scale_random=scale_random, rotation=rotation, rotation_random=rotation_random,
+                        luminance_random=luminance_random, mask_random=mask_random,
+                        pattern_specific=pattern_specific, softness=softness, color_random=color_random,
+                        device=device, dtype=dtype)
+    ref = ref_tensor(device, dtype)
+    fg = param4d(pattern_color, ref)[:, :3] * col
+    bg = param4d(background_color, ref)[:, :3]
+    rgb = bg + (fg - bg) * h
+    return torch.cat([rgb, torch.ones_like(h).expand(rgb.shape[0], -1, -1, -1)], dim=1).clamp(0.0, 1.0)
+
+
+def tile_sampler_pattern(pattern_input=None, *, x_amount: int = 16, y_amount: int = 16, pattern: int = 1,
+                         scale=0.8, size_xy=(1.0, 1.0), position_random=0.0, offset=0.0, rotation=0.0,
+                         rotation_random=0.0, scale_random=0.0, luminance_random=0.0, mask_random=0.0,
+                         size: int = 512, seed: int = 0, device=None, dtype=torch.float32) -> torch.Tensor:
+    """Tile Sampler (simplified): the Tile Generator layout with the Tile Sampler's parameters
+    (no map inputs, no vector/colour outputs)."""
+    nx = check_int(x_amount, "tile_sampler.x_amount", 1, 256)
+    ny = check_int(y_amount, "tile_sampler.y_amount", 1, 256)
+    profile = _pattern_profile(pattern, pattern_input, "tile_sampler")
+    out, _ = tile_field(size, nx, ny, seed=seed, profile=profile, scale=scale, size_xy=size_xy,
+                        offset=offset, position_random=position_random, scale_random=scale_random,
+                        rotation=rotation, rotation_random=rotation_random, luminance_random=luminance_random,
+                        mask_random=mask_random, device=device, dtype=dtype)
+    return out
+
+
+def brick_pattern(*, x_amount: int = 4, y_amount: int = 8, offset=0.5, interstice=(0.04, 0.08), bevel=0.1,
+                  luminance_random=0.3, mask_random=0.0, size: int = 512, seed: int = 0, device=None,
+                  dtype=torch.float32) -> torch.Tensor:
+    """Brick Generator: ``x_amount`` × ``y_amount`` bricks (cells of 1/x_amount by 1/y_amount, so
+    4 × 8 gives 2:1 bricks), alternate rows offset by ``offset``, separated by ``interstice`` (gap
+    as a fraction of the brick's width/height), bevelled over ``bevel`` × the brick height, with
+    random luminance per brick."""
+    nx = check_int(x_amount, "brick_generator.x_amount", 1, 256)
+    ny = check_int(y_amount, "brick_generator.y_amount", 1, 256)
+    ref = ref_tensor(device, dtype)
+    bevel = param4d(bevel, ref)
+
+    def brick(x, y, w, s, ex, ey):
+        # distance to the brick's edge in texture units, bevel relative to the brick height
+        d = torch.minimum((1.0 - x.abs()) * ex, (1.0 - y.abs()) * ey)
+        ramp = (d / (bevel * 2.0 * ey).clamp_min(1e-6)).clamp(0.0, 1.0)
+        return ramp * aa_coverage(torch.maximum(x.abs(), y.abs()) - 1.0, w)
+
+    out, _ = tile_field(size, nx, ny, seed=seed, profile=brick, interstice=interstice, offset=offset,
+                        luminance_random=luminance_random, mask_random=mask_random, device=device,
+                        dtype=dtype)
+    return out
+
+
+def _square_wave(t: torch.Tensor, pw: float) -> torch.Tensor:
+    """1 on the first half of each period of ``t``, 0 on the second, edges anti-aliased (pw: one
+    pixel in periods)."""
+    f = torch.remainder(t, 1.0)
+    return aa_coverage((f - 0.25).abs() - 0.25, pw)
+
+
+def checker_pattern(*, tiling: int = 2, size: int = 512, device=None, dtype=torch.float32) -> torch.Tensor:
+    """Checker 1: a checkerboard of 2·``tiling`` × 2·``tiling`` squares, white first (top left)."""
+    tiling = check_int(tiling, "checker_1.tiling", 1, 256)
+    u, v = pixel_grid(size, device, dtype)
+    pw = tiling / size
+    a = _square_wave(u * tiling, pw)
+    b = _square_wave(v * tiling, pw)
+    return a * b + (1.0 - a) * (1.0 - b)
+
+
+def parquet_pattern(*, tiling: int = 4, planks: int = 3, gap=0.02, bevel=0.05, luminance_random=0.3,
+                    size: int = 512, seed: int = 0, device=None, dtype=torch.float32) -> torch.Tensor:
+    """Parquet 1: a basket-weave parquet, ``tiling`` × ``tiling`` square blocks of ``planks``
+    planks each, horizontal and vertical blocks alternating like a checkerboard. ``gap`` (fraction
+    of a block) separates planks, ``bevel`` (fraction of a plank's width) rounds their edges;
+    luminance varies per plank."""
+    tiling = check_int(tiling, "parquet_1.tiling", 1, 128)
+    planks = check_int(planks, "parquet_1.planks", 1, 32)
+    ref = ref_tensor(device, dtype)
+    gap = param4d(gap, ref)
+    bevel = param4d(bevel, ref)
+    lum_r = param4d(luminance_random, ref)
+    u, v = pixel_grid(size, device, dtype)
+    X, Y = u * tiling, v * tiling
+    bx, by = torch.floor(X), torch.floor(Y)
+    fx, fy = X - bx, Y - by
+    vertical = torch.remainder(bx + by, 2.0) == 1
+    along = torch.where(vertical, fy, fx)
+    across = torch.where(vertical, fx, fy) * planks
+    k = torch.floor(across)
+    a = across - k
+    # distances to the plank's edges, in texture units
+    d_along = torch.minimum(along, 1.0 - along) / tiling
+    d_across = torch.minimum(a, 1.0 - a) / (tiling * planks)
+    d = torch.minimum(d_along, d_across)
+    half_gap = 0.5 * gap / tiling
+    pix = 1.0 / size
+    body = aa_coverage(half_gap - d, pix)
+    ramp = ((d - half_gap) / (bevel / (tiling * planks)).clamp_min(1e-6)).clamp(0.0, 1.0)
+    rnd = lattice_random(seed, 1, tiling * tiling * planks, device, dtype)[0]
+    idx = ((by * tiling + bx) * planks + k).long()
+    lum = 1.0 - lum_r * rnd[idx]
+    return (body * torch.maximum(ramp, torch.zeros_like(ramp)) * lum).clamp(0.0, 1.0)
+
+
+def _weave(size, cells, width, lum_random, seed, device, dtype):
+    """Threads over and under: ``cells`` horizontal and ``cells`` vertical threads (cells even),
+    each ``width`` (x, y: fraction of a cell) wide, rounded across, rising where on top and sinking
+    where underneath, the crossing above alternating like a checkerboard."""
+    ref = ref_tensor(device, dtype)
+    t = param4d(width, ref)
+    wx, wy = (t, t) if t.shape[1] == 1 else (t[:, 0:1], t[:, 1:2])
+    lum_random = param4d(lum_random, ref)
+    u, v = pixel_grid(size, device, dtype)
+    X, Y = u * cells, v * cells
+    col, row = torch.floor(X), torch.floor(Y)
+    rnd = lattice_random(seed, 2, cells, device, dtype)
+    pix = cells / size  # one pixel in cell units
+    # horizontal thread of this row: across coordinate (Y - row - 0.5), height up where (col+row) even
+    dy = (Y - row - 0.5).abs()
+    hw_h = (0.5 * wy).clamp_min(1e-6)
+    prof_h = safe_sqrt(1.0 - (dy / hw_h) ** 2) * aa_coverage(dy - hw_h, pix)
+    elev_h = 0.5 + 0.5 * torch.cos(math.pi * (X - 0.5 + row))
+    h = prof_h * (0.35 + 0.65 * elev_h) * (1.0 - lum_random * rnd[0][row.long()])
+    dx = (X - col - 0.5).abs()
+    hw_v = (0.5 * wx).clamp_min(1e-6)
+    prof_v = safe_sqrt(1.0 - (dx / hw_v) ** 2) * aa_coverage(dx - hw_v, pix)
+    elev_v = 0.5 - 0.5 * torch.cos(math.pi * (Y - 0.5 + col))
+    vv = prof_v * (0.35 + 0.65 * elev_v) * (1.0 - lum_random * rnd[1][col.long()])
+    return torch.maximum(h, vv).clamp(0.0, 1.0)
+
+
+def weave_pattern(*, tiling: int = 4, width=(0.8, 0.8), luminance_random=0.2, size: int = 512, seed: int = 0,
+                  device=None, dtype=torch.float32) -> torch.Tensor:
+    """Weave Generator: a plain weave of 2·``tiling`` threads each way, thread ``width`` (x, y)
+    as a fraction of the spacing, random luminance per thread."""
+    tiling = check_int(tiling, "weave_generator.tiling", 1, 128)
+    return _weave(size, 2 * tiling, width, luminance_random, seed, device, dtype)
+
+
+def mesh_pattern(*, tiling: int = 4, width=0.3, size: int = 512, seed: int = 0, device=None,
+                 dtype=torch.float32) -> torch.Tensor:
+    """Mesh 1: a wire mesh, 2·``tiling`` thin interlaced wires each way, ``width`` of the spacing."""
+    tiling = check_int(tiling, "mesh_1.tiling", 1, 128)
+    return _weave(size, 2 * tiling, width, 0.0, seed, device, dtype)
+
+
+def circular_splatter(*, pattern: int = 2, pattern_amount: int = 8, radius=0.3, pattern_size=0.15,
+                      pattern_specific=0.5, ring_rotation=0.0, pattern_rotation=0.0, scale_random=0.0,
+                      luminance_random=0.0, size: int = 512, seed: int = 0, device=None,
+                      dtype=torch.float32) -> torch.Tensor:
+    """Splatter Circular: ``pattern_amount`` copies of a shape (Tile Generator's list, no image)
+    evenly spaced on a circle of ``radius`` around the image centre, each ``pattern_size`` wide,
+    turned to follow the circle (plus ``pattern_rotation``), the ring turned by ``ring_rotation``;
+    per-copy random scale and luminance. Copies reaching past the border wrap around."""
+    n = check_int(pattern_amount, "splatter_circular.pattern_amount", 1, 256)
+    name = TILE_PATTERNS[check_enum(pattern, "splatter_circular.pattern", range(1, len(TILE_PATTERNS)))]
+    ref = ref_tensor(device, dtype)
+    radius = param4d(radius, ref)
+    half = (0.5 * param4d(pattern_size, ref)).clamp_min(1e-6)
+    spec = param4d(pattern_specific, ref)
+    ring_rot = param4d(ring_rotation, ref) * TAU
+    pat_rot = param4d(pattern_rotation, ref) * TAU
+    scale_random = param4d(scale_random, ref)
+    luminance_random = param4d(luminance_random, ref)
+    rnd = lattice_random(seed, 2, n, device, dtype)
+    u, v = pixel_grid(size, device, dtype)
+    with torch.no_grad():
+        reach = float((radius.abs() + half * math.sqrt(2.0)).max()) + 1.0 / size
+    shifts = (0,) if reach <= 0.5 else (-1, 0, 1)
+    sector = TAU / n
+    out = None
+    for sy in shifts:
+        for sx in shifts:
+            px = u - 0.5 + sx
+            py = v - 0.5 + sy
+            theta = torch.atan2(py, px) - ring_rot
+            k0 = torch.round(theta / sector)
+            for dk in (-1, 0, 1):
+                k = k0 + dk
+                phi = ring_rot + k * sector
+                cx, cy = radius * torch.cos(phi), radius * torch.sin(phi)
+                idx = torch.remainder(k, n).long()
+                idx = idx.expand(max(idx.shape[0], phi.shape[0]), -1, -1, -1)
+                s = (1.0 - scale_random * rnd[0][idx]) * half
+                a = phi + pat_rot
+                ca, sa = torch.cos(a), torch.sin(a)
+                dx, dy = px - cx, py - cy
+                lx = (ca * dx + sa * dy) / s
+                ly = (-sa * dx + ca * dy) / s
+                h = shape_profile(name, lx, ly, (1.0 / size) / s, spec)
+                h = h * (1.0 - luminance_random * rnd[1][idx])
+                out = h if out is None else torch.maximum(out, h)
+    return out.clamp(0.0, 1.0)

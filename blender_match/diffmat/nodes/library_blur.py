@@ -1,0 +1,99 @@
+"""Declarations of the library blur / warp / transform nodes (see functional/library_blur.py)."""
+from .. import functional as F
+from .registry import register
+from .spec import Input, NodeSpec, Param
+
+NA = "non_atomic"
+
+_BLUR_HQ = (Param("intensity", 10.0, 0.0, 16.0, doc="256-px pixels (sigma = intensity / 2)"),
+            Param("quality", 0.0, optimizable=False, doc="sample quality (no effect: exact FFT blur)"))
+register(NodeSpec("blur_hq_grayscale", NA, F.blur_hq, inputs=(Input("source", "gray"),),
+                  outputs=("blur_hq",), params=_BLUR_HQ, doc="Blur HQ (grayscale): Gaussian blur."))
+register(NodeSpec("blur_hq", NA, F.blur_hq, inputs=(Input("source", "color"),),
+                  outputs=("blur_hq",), params=_BLUR_HQ, doc="Blur HQ (colour): Gaussian blur."))
+
+register(NodeSpec(
+    "highpass_grayscale", NA, F.highpass, inputs=(Input("source"),), outputs=("highpass",),
+    params=(Param("radius", 6.0, 0.0, 64.0, doc="256-px pixels"),),
+    doc="Highpass: detail above the radius, around mid-gray."))
+
+_SLOPE = (Param("samples", 8, 1, 32, kind="int", doc="at most 8 are taken"),
+          Param("mode", 1, kind="enum", choices=(0, 1, 5, 6), doc="0/1 blur, 5 max, 6 min"),
+          Param("intensity", 10.0, -16.0, 16.0, doc="256-px pixels along the slope"))
+register(NodeSpec("slope_blur_grayscale", NA, F.slope_blur,
+                  inputs=(Input("source", "gray"), Input("effect", "gray")), outputs=("slope_blur",),
+                  params=_SLOPE, aliases=("slope_blur_grayscale_2",),
+                  doc="Slope Blur (grayscale): smear along the slope of a height map."))
+register(NodeSpec("slope_blur", NA, F.slope_blur,
+                  inputs=(Input("source", "color"), Input("effect", "gray")), outputs=("slope_blur",),
+                  params=_SLOPE, doc="Slope Blur (colour)."))
+
+register(NodeSpec(
+    "non_uniform_blur_grayscale", NA, F.non_uniform_blur,
+    inputs=(Input("source", "gray"), Input("effect", "gray")), outputs=("non_uniform_blur",),
+    params=(Param("intensity", 10.0, 0.0, 16.0, doc="256-px pixels where effect is white"),
+            Param("anisotropy", 0.0), Param("asymmetry", 0.0), Param("angle", 0.0, doc="turns"),
+            Param("samples", 4, 1, 16, kind="int", doc="blur levels (at most 6)"),
+            Param("blades", 5, 1, 9, kind="int", doc="bokeh blades (not modelled)")),
+    aliases=("non_uniform_blur",),
+    doc="Non-Uniform Blur: blur radius driven by an effect map."))
+
+register(NodeSpec(
+    "vector_warp_grayscale", NA, F.vector_warp,
+    inputs=(Input("input", "gray"), Input("vector_map", "color")),
+    params=(Param("intensity", 1.0, 0.0, 1.0, doc="image widths per unit vector"),
+            Param("vector_format", 0, kind="enum", choices=(0, 1), doc="0 DirectX, 1 OpenGL")),
+    doc="Vector Warp: displacement by an RG vector map."))
+register(NodeSpec(
+    "vector_warp", NA, F.vector_warp,
+    inputs=(Input("input", "color"), Input("vector_map", "color")),
+    params=(Param("intensity", 1.0, 0.0, 1.0, doc="image widths per unit vector"),
+            Param("vector_format", 0, kind="enum", choices=(0, 1), doc="0 DirectX, 1 OpenGL")),
+    doc="Vector Warp (colour)."))
+
+register(NodeSpec(
+    "vector_morph_grayscale", NA, F.vector_morph,
+    inputs=(Input("input", "gray"), Input("vector_field", "color")),
+    params=(Param("amount", 1.0, 0.0, 1.0, doc="path length: amount x 0.25 image widths"),
+            Param("vector_format", 0, kind="enum", choices=(0, 1), doc="0 DirectX, 1 OpenGL")),
+    doc="Vector Morph: advection along a vector field."))
+
+register(NodeSpec(
+    "mosaic_grayscale", NA, F.mosaic,
+    inputs=(Input("input", "gray"), Input("effect", "gray", optional=True)),
+    params=(Param("intensity", 0.5), Param("samples", 4, 1, 16, kind="int", doc="warp steps (at most 4)")),
+    doc="Mosaic: multi-step self/effect-driven warp."))
+
+_SAFE = (Param("tile", 1, 1, 64, kind="int"),
+         Param("tile_mode", 0, kind="enum", choices=(0, 1), doc="0 uniform tile, 1 tile_xy"),
+         Param("tile_xy", (1.0, 1.0), 1.0, 64.0, size=2, optimizable=False),
+         Param("tile_safe_rotation", True, kind="bool"),
+         Param("offset", (0.0, 0.0), -1.0, 1.0, size=2),
+         Param("offset_mode", 0, kind="enum", choices=(0, 1), doc="0 manual, 1 random"),
+         Param("rotation", 0.0, 0.0, 1.0, doc="turns"),
+         Param("symmetry", 0, kind="enum", choices=(0, 1, 2, 3), doc="none, X, Y, X+Y"),
+         Param("mipmap_mode", 0, kind="enum", choices=(0, 1)),
+         Param("mipmap_level", 0, 0, 12, kind="int"))
+register(NodeSpec("safe_transform_grayscale", NA, F.safe_transform, inputs=(Input("input", "gray"),),
+                  params=_SAFE, context=("seed",), doc="Safe Transform (grayscale)."))
+register(NodeSpec("safe_transform", NA, F.safe_transform, inputs=(Input("input", "color"),),
+                  params=_SAFE, context=("seed",), doc="Safe Transform (colour)."))
+
+_PATCH = (Param("octave", 3, 0, 8, kind="int", doc="2^octave cells per side"),
+          Param("size", 1.0, 0.1, 4.0, doc="patch scale"),
+          Param("disorder", 0.0), Param("mask_size", 0.5), Param("mask_precision", 0.5),
+          Param("mask_warping", 0.0), Param("rotation", 0.0, doc="turns"),
+          Param("rotation_variation", 0.0))
+register(NodeSpec("make_it_tile_patch_grayscale", NA, F.make_it_tile_patch, inputs=(Input("source", "gray"),),
+                  outputs=("make_it_tile_patch",), params=_PATCH, context=("seed",),
+                  doc="Make It Tile Patch (grayscale)."))
+register(NodeSpec("make_it_tile_patch", NA, F.make_it_tile_patch, inputs=(Input("source", "color"),),
+                  outputs=("make_it_tile_patch",), params=_PATCH, context=("seed",),
+                  doc="Make It Tile Patch (colour)."))
+
+_PHOTO = tuple(Param(f"{name}_{axis}", 0.5) for axis in ("h", "v")
+               for name in ("mask_warping", "mask_size", "mask_precision"))
+register(NodeSpec("make_it_tile_photo_grayscale", NA, F.make_it_tile_photo, inputs=(Input("source", "gray"),),
+                  outputs=("make_it_tile_photo",), params=_PHOTO, doc="Make It Tile Photo (grayscale)."))
+register(NodeSpec("make_it_tile_photo", NA, F.make_it_tile_photo, inputs=(Input("source", "color"),),
+                  outputs=("make_it_tile_photo",), params=_PHOTO, doc="Make It Tile Photo (colour)."))

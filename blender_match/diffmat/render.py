@@ -1,0 +1,108 @@
+"""Differentiable flash rendering of material maps (the MATch paper, section 4.1, eq. 2).
+
+The BRDF is the simplified Disney/metallic-roughness model: Lambertian diffuse plus a GGX
+microfacet specular lobe with Smith shadowing (Schlick-GGX form) and Schlick's Fresnel; metallic
+blends a dielectric (F0 = 0.04, diffuse = base colour) and a metal (F0 = base colour, no diffuse).
+A point light sits at a pinhole camera above the sample's centre (a phone with its flash): for
+every pixel the light and view directions coincide.
+
+Maps follow Blender's conventions: base colour sRGB-encoded, normal in OpenGL convention encoded in
+[0, 1], roughness perceptual (alpha = roughness squared), metallic in [0, 1]. The output is an sRGB
+image clamped to [0, 1].
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import torch
+
+from .errors import DiffMatError
+from .functional.common import param4d
+
+EPS = 1e-6
+
+
+@dataclass(frozen=True)
+class FlashCamera:
+    """A phone held above the sample, flash beside the lens.
+
+    ``fov`` is the camera's full field of view in degrees (the sample fills the frame),
+    ``distance`` is in sample widths, ``power`` scales the flash so that a white Lambertian sample
+    at the centre renders at ``power`` in linear radiance (1 would just saturate).
+    """
+
+    fov: float = 50.0
+    distance: float | None = None
+    power: float = 0.75
+
+    def camera_distance(self) -> float:
+        if self.distance is not None:
+            return self.distance
+        return 0.5 / math.tan(math.radians(self.fov) / 2)
+
+
+def srgb_to_linear(x: torch.Tensor) -> torch.Tensor:
+    x = x.clamp(0.0, 1.0)
+    return torch.where(x <= 0.04045, x / 12.92, ((x + 0.055) / 1.055).clamp_min(EPS) ** 2.4)
+
+
+def linear_to_srgb(x: torch.Tensor) -> torch.Tensor:
+    x = x.clamp(0.0, 1.0)
+    return torch.where(x <= 0.0031308, x * 12.92, 1.055 * x.clamp_min(1e-8) ** (1 / 2.4) - 0.055)
+
+
+def _rgb(x: torch.Tensor) -> torch.Tensor:
+    return x[:, :3] if x.shape[1] >= 3 else x.expand(-1, 3, -1, -1)
+
+
+def _gray(x: torch.Tensor) -> torch.Tensor:
+    return x[:, :1] if x.shape[1] == 1 else x[:, :3].mean(dim=1, keepdim=True)
+
+
+def render_flash(basecolor: torch.Tensor, normal: torch.Tensor | None = None,
+                 roughness: torch.Tensor | None = None, metallic: torch.Tensor | None = None,
+                 camera: FlashCamera = FlashCamera()) -> torch.Tensor:
+    """Render maps (N, C, H, W) under a co-located flash; returns an sRGB (N, 3, H, W) image.
+
+    Missing maps default to a flat normal, roughness 0.5 and metallic 0. Differentiable in every map.
+    """
+    n_img, _, h, w = basecolor.shape
+    like = basecolor
+    albedo = srgb_to_linear(_rgb(basecolor))
+    if normal is None:
+        nrm = torch.zeros(1, 3, h, w, dtype=like.dtype, device=like.device)
+        nrm[:, 2] = 1.0
+    else:
+        nrm = _rgb(normal) * 2 - 1
+        nrm = nrm / nrm.norm(dim=1, keepdim=True).clamp_min(EPS)
+    rough = _gray(roughness) if roughness is not None else torch.full_like(albedo[:, :1], 0.5)
+    metal = _gray(metallic) if metallic is not None else torch.zeros_like(albedo[:, :1])
+
+    # positions on the sample plane (width 1, centred) and the direction to the camera/light
+    d = camera.camera_distance()
+    ys = (torch.arange(h, dtype=like.dtype, device=like.device) + 0.5) / h - 0.5
+    xs = (torch.arange(w, dtype=like.dtype, device=like.device) + 0.5) / w - 0.5
+    y, x = torch.meshgrid(-ys, xs, indexing="ij")
+    to_light = torch.stack([-x, -y, torch.full_like(x, d)])[None]
+    dist2 = (to_light ** 2).sum(dim=1, keepdim=True)
+    wi = to_light / dist2.sqrt()
+
+    cos = (nrm * wi).sum(dim=1, keepdim=True).clamp_min(EPS)  # n.l = n.v = n.h (co-located)
+    alpha = (rough.clamp(0.02, 1.0)) ** 2
+    a2 = alpha ** 2
+    ggx = a2 / (math.pi * ((cos ** 2) * (a2 - 1) + 1) ** 2)
+    k = alpha / 2
+    g1 = cos / (cos * (1 - k) + k)
+    f0 = 0.04 * (1 - metal) + albedo * metal  # v.h = 1: Schlick's Fresnel is F0
+    specular = ggx * f0 * g1 * g1 / (4 * cos * cos)
+    diffuse = albedo * (1 - metal) / math.pi
+    irradiance = param4d(camera.power * math.pi * d * d, like) / dist2 * cos
+    return linear_to_srgb((diffuse + specular) * irradiance)
+
+
+def render_maps(maps: dict[str, torch.Tensor], camera: FlashCamera = FlashCamera()) -> torch.Tensor:
+    """``render_flash`` from a MaterialGraph's output dictionary."""
+    if "basecolor" not in maps:
+        raise DiffMatError("render_maps: the maps have no basecolor")
+    return render_flash(maps["basecolor"], maps.get("normal"), maps.get("roughness"), maps.get("metallic"), camera)
