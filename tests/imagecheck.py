@@ -1,6 +1,8 @@
 """Image checks used across tests: seams, smooth tiling inputs, box downsampling."""
 from __future__ import annotations
 
+import math
+
 import torch
 import torch.nn.functional as F
 
@@ -14,8 +16,8 @@ def smooth_tiling_image(channels: int, size: int, seed: int = 0, dtype=torch.flo
     for ch in range(channels):
         for _ in range(octaves * 3):
             fx, fy = torch.randint(-octaves, octaves + 1, (2,), generator=g).tolist()
-            phase = torch.rand((), generator=g, dtype=torch.float64) * 6.2832
-            out[ch] += torch.cos(6.2832 * (fx * x + fy * y) + phase)
+            phase = torch.rand((), generator=g, dtype=torch.float64) * math.tau
+            out[ch] += torch.cos(math.tau * (fx * x + fy * y) + phase)
     lo = out.amin(dim=(1, 2), keepdim=True)
     hi = out.amax(dim=(1, 2), keepdim=True)
     out = 0.05 + 0.9 * (out - lo) / (hi - lo + 1e-12)
@@ -35,8 +37,14 @@ def seam_jumps(img: torch.Tensor) -> tuple[float, float]:
 
 
 def assert_tiles(img: torch.Tensor, slack: float = 1e-5):
+    """The jump across the wrap edges is no larger than the jumps inside.
+
+    In a periodic image the wrap pair is one neighbour pair among the others, so it can be the
+    largest by chance; a margin of half the largest inner jump allows that, while an image that
+    does not tile (a ramp, an unwrapped filter) jumps across its edges many times more.
+    """
     wrap, inside = seam_jumps(img)
-    assert wrap <= inside + slack, f"seam jump {wrap:.4f} exceeds the largest inner jump {inside:.4f}"
+    assert wrap <= 1.5 * inside + slack, f"seam jump {wrap:.4f} exceeds the largest inner jump {inside:.4f}"
 
 
 def box_down(img: torch.Tensor, factor: int = 2) -> torch.Tensor:

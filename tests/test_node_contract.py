@@ -118,3 +118,10 @@ def test_bad_input_is_a_clear_error(spec):
         images[required[0]] = torch.rand(SIZE, SIZE)
         with pytest.raises(DiffMatError):
             node(*images, ctx=EvalContext(size=SIZE))
+
+
+def test_seam_check_catches_an_image_that_does_not_tile():
+    ramp = torch.linspace(0, 1, SIZE).expand(1, 1, SIZE, SIZE)
+    with pytest.raises(AssertionError, match="seam jump"):
+        assert_tiles(ramp)
+    assert_tiles(torch.roll(smooth_tiling_image(1, SIZE), 5, dims=-1))

@@ -31,8 +31,7 @@ def load_graph(source: str):
     if path.suffix.lower() == ".sbs":
         from ..translator import load_sbs_graph
 
-        graph, _report = load_sbs_graph(path)
-        return graph
+        return load_sbs_graph(path)
     raise ValueError(f"{source}: not a bundled graph ({', '.join(sorted(BUNDLED))}) nor a .sbs file")
 
 

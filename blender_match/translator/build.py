@@ -29,7 +29,6 @@ import os
 import re
 from collections import Counter
 
-from ..diffmat.errors import DiffMatError
 from ..diffmat.functional import function_graph as fg_engine
 from ..diffmat.nodes import get_spec, has_spec
 from . import function_graphs as fgs
@@ -708,4 +707,4 @@ def convert(sp, value):
     return x
 
 
-__all__ = ["Builder", "convert", "safe_name", "DiffMatError"]
+__all__ = ["Builder", "convert", "safe_name", "xml_name"]

@@ -25,10 +25,11 @@ __all__ = ["distance"]
 REF = 256.0
 
 
-def nearest_mask_pixel(mask: torch.Tensor, reach_px: float) -> tuple[torch.Tensor, torch.Tensor]:
+def nearest_mask_pixel(mask: torch.Tensor, reach_px: float, want_index: bool = True):
     """For a boolean mask (B, 1, H, W): the flat index (y·W + x) of the nearest True pixel on the
     torus (-1 where there is none within ``reach_px``) and the Euclidean distance to it in pixels
-    (exact up to ``reach_px``; inf, or some larger distance, beyond it).
+    (exact up to ``reach_px``; inf, or some larger distance, beyond it). With ``want_index`` off
+    only the distance is computed (the index is None).
 
     Separable and exact: first, per column, the wrap-around vertical distance to the nearest mask
     pixel (two running max/min scans over two stacked copies of the column); then, per row, the
@@ -45,27 +46,38 @@ def nearest_mask_pixel(mask: torch.Tensor, reach_px: float) -> tuple[torch.Tenso
     nxt = torch.cummin(nxt, dim=-2).values.flip(-2)[..., :h, :]                       # next mask row >= y
     above, below = ys - last, nxt - ys
     g = torch.minimum(above, below)                                                   # inf: empty column
-    row = torch.where(above <= below, last, nxt)
-    row = torch.remainder(torch.nan_to_num(row, nan=0.0, posinf=0.0, neginf=0.0), h)
-    g2 = g * g
     half = w // 2
     reach = int(math.ceil(reach_px))
-    shifts = range(-half, w - half) if reach >= half else range(-reach, reach + 1)
-    best = g2.clone()
-    best_dx = torch.zeros_like(g2)
-    for dx in shifts:
+    lo, hi = (-half, w - half - 1) if reach >= half else (-reach, reach)
+    # one key per candidate, d² · K + (dx − lo), with d² capped just beyond the reach: exact
+    # integers, so a running minimum yields the nearest distance and its column offset together
+    # (ties: smallest dx); float32 while the keys stay below 2^24, float64 beyond
+    k = float(hi - lo + 1)
+    cap = float((reach + 1) ** 2)
+    dtype = torch.float32 if (2 * cap + 1) * k < 2 ** 24 else torch.float64
+    g2 = torch.clamp((g * g).to(dtype), max=cap) * k
+    # circular padding once, then every offset is a view: column x + dx is padded[x + dx - lo]
+    padded = torch.cat([g2[..., w + lo:], g2, g2[..., :hi]], dim=-1) if lo < 0 else g2
+    best = g2 + float(-lo)
+    for dx in range(lo, hi + 1):
         if dx == 0:
             continue
-        cand = torch.roll(g2, -dx, dims=-1) + float(dx * dx)                          # column x + dx
-        better = cand < best
-        best = torch.where(better, cand, best)
-        best_dx = torch.where(better, float(dx), best_dx)
+        cand = padded[..., dx - lo:dx - lo + w] + float(dx * dx * k + dx - lo)
+        torch.minimum(best, cand, out=best)
+    best = best.to(torch.float64)
+    d2 = torch.floor(best / k)
+    found = d2 < cap
+    dist = torch.where(found, d2.sqrt(), math.inf)
+    if not want_index:
+        return None, dist
+    best_dx = best - d2 * k + lo
+    row = torch.where(above <= below, last, nxt)
+    row = torch.remainder(torch.nan_to_num(row, nan=0.0, posinf=0.0, neginf=0.0), h)
     xs = torch.arange(w, device=dev).reshape(1, 1, 1, w)
-    col = torch.remainder(xs + best_dx.long(), w)
-    found = torch.isfinite(best)
+    col = torch.remainder(xs + torch.nan_to_num(best_dx, nan=0.0).long(), w)
     near_row = torch.gather(row, -1, col.expand(b, 1, h, w)).long()
     idx = torch.where(found, near_row * w + col, torch.full_like(col, -1))
-    return idx, best.to(torch.float64).sqrt()
+    return idx, dist
 
 
 def distance(mask: torch.Tensor, source: torch.Tensor | None = None, *, distance=10.0,
@@ -94,11 +106,12 @@ def distance(mask: torch.Tensor, source: torch.Tensor | None = None, *, distance
     scale = w / REF                                                     # pixels per reference pixel
     reach = float(dmax.detach().abs().max()) * scale + 1.0
     with torch.no_grad():
-        idx, dpx = nearest_mask_pixel(mask > 0.5, reach)
+        idx, dpx = nearest_mask_pixel(mask > 0.5, reach, want_index=source is not None)
     d_ref = (dpx / scale).to(mask.dtype)
     limit = dmax.abs().clamp(min=1e-6)
+    # pixels with no mask pixel in reach: any finite distance beyond the limit (fade 0, no NaN grads)
+    d_ref = torch.where(torch.isfinite(d_ref), d_ref, limit.detach() * 2 + 1)
     fade = torch.clamp(1.0 - d_ref / limit, 0.0, 1.0)
-    fade = torch.where(torch.isfinite(d_ref), fade, torch.zeros_like(fade))
     channels = 4 if colorswitch else 1
     if source is None:
         return match_channels(fade, channels)

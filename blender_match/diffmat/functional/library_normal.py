@@ -167,7 +167,7 @@ def curvature_smooth(input: torch.Tensor, *, normal_format: int = 0):
     return (0.5 + 0.5 * c / peak).clamp(0.0, 1.0)
 
 
-HBAO_STEPS = 3
+HBAO_STEPS = 2
 HBAO_RADIUS = 0.05        # image widths at radius 1
 HBAO_HEIGHT = 0.25        # image widths of relief at height_depth 1
 
@@ -178,7 +178,7 @@ def hbao(input: torch.Tensor, *, height_depth=0.1, radius=1.0, quality: int = 4,
 
     Heights span ``height_depth`` x 0.25 image widths (with ``use_world_units``: ``height_scale``
     cm over ``surface_size`` cm). Along ``quality`` directions (4, 8 or 16; at most 8 are
-    traced), 3 steps out to ``radius`` x 0.05 image widths find the highest horizon; the
+    traced), 2 steps out to ``radius`` x 0.05 image widths find the highest horizon; the
     occlusion is the mean sine of the horizon elevations. A flat height gives 1.
     """
     if quality not in (4, 8, 16):

@@ -260,8 +260,8 @@ NOISE_RECIPES: dict[str, tuple[Recipe, tuple, tuple]] = {
     "herb_1": (Recipe(cells=1, aspect=(16, 1), octaves=3, roughness=0.5, mode="ridged", warp=0.03, gain=1.2,
                       offset=-0.3), (1, 32, 2), ()),
     # Wood fibers: fine vertical fibres
-    "wood_fibers_1": (Recipe(kind="value", interp="linear", cells=1, aspect=(24, 1), octaves=4, roughness=0.6,
-                             warp=0.01, gain=0.9), (1, 32, 2), ()),
+    "wood_fibers_1": (Recipe(kind="value", interp="cubic", cells=1, aspect=(24, 1), octaves=3, roughness=0.6,
+                             gain=0.9), (1, 32, 2), ()),
     "wood_fibers_2": (Recipe(cells=1, aspect=(24, 1), octaves=3, roughness=0.5, mode="ridged", warp=0.02, gain=0.9),
                       (1, 32, 2), ()),
     # Vertical noise: values vary across, barely down (vertical streaks)

@@ -67,9 +67,9 @@ def _as_batch(d, device, dtype) -> torch.Tensor:
 
 
 def _supersample(size: int, cells: int) -> int:
-    """Supersampling factor so that a render has >= 2 samples per cell (at most 4 x)."""
+    """Supersampling factor so that a render has >= 4 samples per cell (at most 4 x)."""
     ss = 1
-    while size * ss < 2 * cells and ss < 4:
+    while size * ss < 4 * cells and ss < 4:
         ss *= 2
     return ss
 
@@ -173,10 +173,11 @@ def fractal_noise(cells, size: int, *, octaves: int, roughness=0.5, seed: int = 
             continue                      # above Nyquist (< 2 pixels a cell): removed (prefilter)
         layer = lattice_noise((cx, cy), size, seed=seed, key=(key, o), kind=kind, interp=interp,
                               disorder=disorder, device=device, dtype=dtype)
-        if mode == "ridged":
-            layer = (1 - 1.6 * layer.abs()) / 0.75
-        elif mode == "billow":
-            layer = (1.6 * layer.abs() - 1.28) / 0.96
+        if mode in ("ridged", "billow"):
+            soft_abs = torch.sqrt(layer * layer + 0.01)       # |layer| with a rounded crease
+            layer = (1.6 * soft_abs - 1.3) / 0.95
+            if mode == "ridged":
+                layer = -layer
         total = layer * w if total is None else total + layer * w
     return total / torch.sqrt(norm)
 

@@ -52,9 +52,10 @@ def smoothstep01(t: torch.Tensor) -> torch.Tensor:
 
 def aa_coverage(f: torch.Tensor, width) -> torch.Tensor:
     """Coverage of the region ``f < 0`` where ``f`` is a distance-like implicit function and
-    ``width`` one pixel in the same units: a C1 smoothstep from 1 (inside) to 0 over one pixel,
-    0.5 on the edge."""
-    return smoothstep01(0.5 - f / width)
+    ``width`` one pixel in the same units: a linear ramp from 1 (inside) to 0 over one pixel, 0.5 on
+    the edge — the exact box-filtered coverage of a straight edge, so areas do not depend on the
+    resolution; differentiable in the edge's position."""
+    return (0.5 - f / width).clamp(0.0, 1.0)
 
 
 def safe_sqrt(x: torch.Tensor) -> torch.Tensor:
@@ -95,33 +96,37 @@ def shape_profile(name: str, x: torch.Tensor, y: torch.Tensor, w, spec) -> torch
     """Height in [0, 1] of shape ``name`` at local coordinates (x, y) (the shape fills [-1, 1]²,
     y downwards). ``w``: one pixel in local units (anti-aliasing); ``spec``: Substance's "pattern
     specific" control in [0, 1] (bevel, frequency, offset… depending on the shape)."""
-    ax, ay = x.abs(), y.abs()
-    box = aa_coverage(torch.maximum(ax, ay) - 1.0, w)
-    if name == "square":
-        return box
+    if name in ("square", "pyramid", "brick", "gradation", "waves"):
+        m = torch.maximum(x.abs(), y.abs())
+        if name == "square":
+            return aa_coverage(m - 1.0, w)
+        if name == "pyramid":
+            return (1.0 - m).clamp_min(0.0)
+        if name == "brick":
+            bevel = 0.02 + 0.5 * spec
+            return ((1.0 - m) / bevel).clamp(0.0, 1.0)
+        box = aa_coverage(m - 1.0, w)
+        if name == "gradation":
+            return box * ((x + 1.0) * 0.5).clamp(0.0, 1.0)
+        k = 1.0 + 4.0 * spec
+        return box * (0.5 + 0.5 * torch.cos(math.pi * k * x))
+    if name == "capsule":
+        rad = 0.25 + 0.5 * spec
+        px = (x.abs() - (1.0 - rad)).clamp_min(0.0)
+        d = safe_hypot(px, y) / rad
+        return safe_sqrt(1.0 - d * d) * aa_coverage((d - 1.0) * rad, w)
     r = safe_hypot(x, y)
-    disc = aa_coverage(r - 1.0, w)
     if name == "disc":
-        return disc
+        return aa_coverage(r - 1.0, w)
     if name == "paraboloid":
         return (1.0 - r * r).clamp_min(0.0)
     if name == "bell":
         return _bell(r)
     if name == "gaussian":
         e = math.exp(-4.5)
-        return ((torch.exp(-4.5 * r * r) - e) / (1.0 - e)).clamp_min(0.0)
+        return ((torch.exp(-4.5 * (r * r).clamp(max=1.0)) - e) / (1.0 - e)).clamp_min(0.0)
     if name == "thorn":
         return (1.0 - r).clamp_min(0.0) ** (1.5 + 2.5 * spec)
-    if name == "pyramid":
-        return (1.0 - torch.maximum(ax, ay)).clamp_min(0.0)
-    if name == "brick":
-        bevel = 0.02 + 0.5 * spec
-        return ((1.0 - torch.maximum(ax, ay)) / bevel).clamp(0.0, 1.0)
-    if name == "gradation":
-        return box * ((x + 1.0) * 0.5).clamp(0.0, 1.0)
-    if name == "waves":
-        k = 1.0 + 4.0 * spec
-        return box * (0.5 + 0.5 * torch.cos(math.pi * k * x))
     if name == "half_bell":
         return _bell(r) * aa_coverage(y, w)
     if name == "ridged_bell":
@@ -129,12 +134,7 @@ def shape_profile(name: str, x: torch.Tensor, y: torch.Tensor, w, spec) -> torch
     if name == "crescent":
         shift = 0.2 + 0.6 * spec
         inner = aa_coverage(safe_hypot(x - shift, y) - 0.9, w)
-        return disc * (1.0 - inner)
-    if name == "capsule":
-        rad = 0.25 + 0.5 * spec
-        px = (ax - (1.0 - rad)).clamp_min(0.0)
-        d = safe_hypot(px, y) / rad
-        return safe_sqrt(1.0 - d * d) * aa_coverage((d - 1.0) * rad, w)
+        return aa_coverage(r - 1.0, w) * (1.0 - inner)
     if name == "cone":
         return (1.0 - r).clamp_min(0.0)
     if name == "hemisphere":
@@ -227,51 +227,81 @@ def tile_field(size: int, nx: int, ny: int, *, seed: int, profile: Callable, sca
             ext_y = torch.where(rot_q == 1, hx, hy) * ny
         jit = 0.5 * position_random.abs()
         grow = 1.0 + 0.5 * softness.abs()
-        reach = max(float((ext_x * grow + jit).max()) + nx / size, float((ext_y * grow + jit).max()) + ny / size)
-    ring = 0 if reach <= 0.5 else (1 if reach <= 1.5 else 2)
-    ring = min(ring, (max(nx, ny) - 1) // 2 + 1) if max(nx, ny) > 1 else ring
+        # (the half-pixel anti-aliasing spill of a neighbour is ignored)
+        rx, ry = ext_x * grow + jit, ext_y * grow + jit
+        # cells whose centre lies within reach: m per axis, starting at floor(x + 1/2 - m/2); a
+        # batch uses the largest window and masks each element to its own (same result as alone)
+        mxb = torch.ceil(2.0 * rx - 1e-6).clamp(1, min(5, nx))
+        myb = torch.ceil(2.0 * ry - 1e-6).clamp(1, min(5, ny))
+    mx, my = int(mxb.max()), int(myb.max())
+    per_element = bool((mxb != mx).any() or (myb != my).any())
 
-    X, Y = u * nx, v * ny
-    row0 = torch.floor(Y)
+    # separable coordinates: rows depend on v only, so row quantities are (.., H, 1)
+    X = u[..., :1, :] * nx  # (1, 1, 1, W)
+    Y = v[..., :, :1] * ny  # (1, 1, H, 1)
+    row0 = torch.floor(Y + 0.5 - 0.5 * my)
     pix = 1.0 / size
+    table = rnd.view(N_RND, ny, nx)
+
+    def active(t):
+        return t.requires_grad or bool((t != 0).any())
+
+    use_pos, use_scale = active(position_random), active(scale_random)
+    use_rot = active(rotation) or active(rotation_random)
+    use_lum, use_mask, use_spec = active(luminance_random), active(mask_random), active(spec_random)
     best = None
     color = None
-    for dj in range(-ring, ring + 1):
+    for dj in range(my):
         r = row0 + dj
-        shift = offset * torch.remainder(r, 2.0)
+        shift = offset * torch.remainder(r, 2.0)  # (B|1, 1, H, 1)
         xs = X - shift
-        c0 = torch.floor(xs)
+        c0 = torch.floor(xs + 0.5 - 0.5 * mx)
         fy = (Y - r - 0.5) / ny
-        for di in range(-ring, ring + 1):
+        rows = table[:, torch.remainder(r, ny).long().view(-1)]  # (K, H, nx)
+        if per_element:
+            r_lo = torch.floor(Y + 0.5 - 0.5 * myb)
+            keep_r = (r >= r_lo) & (r < r_lo + myb)
+            c_lo = torch.floor(xs + 0.5 - 0.5 * mxb)
+        for di in range(mx):
             c = c0 + di
-            fx = (xs - c - 0.5) / nx
-            idx = (torch.remainder(r, ny) * nx + torch.remainder(c, nx)).long()
-            idx = idx.expand(max(idx.shape[0], fx.shape[0]), -1, -1, -1)
-            vals = rnd[:, idx]  # (K, B, 1, H, W)
-            s = 1.0 - scale_random * vals[RND_SCALE]
-            dx = fx - position_random * (vals[RND_PX] - 0.5) / nx
-            dy = fy - position_random * (vals[RND_PY] - 0.5) / ny
-            ang = TAU * (rotation + rotation_random * (vals[RND_ROT] - 0.5))
-            ca, sa = torch.cos(ang), torch.sin(ang)
+            fx = (xs - c - 0.5) / nx  # (B|1, 1, H, W)
+            bsz = c.shape[0]
+            cidx = torch.remainder(c, nx).long().view(1, bsz, size, size).expand(N_RND, -1, -1, -1)
+            vals = torch.gather(rows.unsqueeze(1).expand(-1, bsz, -1, -1), 3, cidx).unsqueeze(2)  # (K, B, 1, H, W)
+            s = 1.0 - scale_random * vals[RND_SCALE] if use_scale else 1.0
+            dx, dy = fx, fy
+            if use_pos:
+                dx = dx - position_random * (vals[RND_PX] - 0.5) / nx
+                dy = dy - position_random * (vals[RND_PY] - 0.5) / ny
             ex = (hx * s).clamp_min(1e-6)
             ey = (hy * s).clamp_min(1e-6)
-            lx = (ca * dx + sa * dy) / ex
-            ly = (-sa * dx + ca * dy) / ey
+            if use_rot:
+                ang = TAU * (rotation + rotation_random * (vals[RND_ROT] - 0.5))
+                ca, sa = torch.cos(ang), torch.sin(ang)
+                lx = (ca * dx + sa * dy) / ex
+                ly = (-sa * dx + ca * dy) / ey
+            else:
+                lx, ly = dx / ex, dy / ey
             w = pix / torch.sqrt(ex * ey)
-            sp = (spec + spec_random * (vals[RND_SPEC] - 0.5)).clamp(0.0, 1.0)
+            sp = (spec + spec_random * (vals[RND_SPEC] - 0.5)).clamp(0.0, 1.0) if use_spec else spec
             h = profile(lx, ly, w + softness, sp, ex, ey)
-            lum = 1.0 - luminance_random * vals[RND_LUM]
-            # soft mask: fully visible at mask_random = 0, fully hidden at mask_random = 1
-            vis = smoothstep01((vals[RND_MASK] - mask_random * 1.05) / 0.05 + 1.0)
-            h = h * lum * vis
-            if color_random is not None:
+            if use_lum:
+                h = h * (1.0 - luminance_random * vals[RND_LUM])
+            if use_mask:
+                # soft mask: fully visible at mask_random = 0, fully hidden at mask_random = 1
+                h = h * smoothstep01((vals[RND_MASK] - mask_random * 1.05) / 0.05 + 1.0)
+            if per_element:
+                h = h * (keep_r & (c >= c_lo) & (c < c_lo + mxb))
+            if h.shape[-2:] != (size, size):
+                h = h.expand(-1, -1, size, size)
+            if cr is not None:
                 col = 1.0 - cr * (1.0 - torch.cat([vals[RND_R], vals[RND_G], vals[RND_B]], dim=1))
             if best is None:
                 best = h
-                if color_random is not None:
+                if cr is not None:
                     color = col.expand(h.shape[0], -1, -1, -1) if col.shape[0] < h.shape[0] else col
             else:
-                if color_random is not None:
+                if cr is not None:
                     color = torch.where(h > best, col, color)
                 best = torch.maximum(best, h)
     return best.clamp(0.0, 1.0), color
@@ -401,7 +431,7 @@ def stripes(*, number: int = 10, width=0.5, softness=0.0, shift: int = 0, size: 
 # ----------------------------------------------------------------------------------------------
 # Scratches
 # ----------------------------------------------------------------------------------------------
-def scratches(*, amount: int = 6, length=1.6, width=0.02, angle=0.0, angle_random=0.5,
+def scratches(*, amount: int = 6, length=1.4, width=0.02, angle=0.0, angle_random=0.5,
               length_random=0.5, luminance_random=0.5, mask_random=0.0, size: int = 512, seed: int = 0,
               device=None, dtype=torch.float32) -> torch.Tensor:
     """Scratches Generator (simplified): an ``amount`` × ``amount`` lattice of cells, each holding
@@ -424,7 +454,7 @@ def scratches(*, amount: int = 6, length=1.6, width=0.02, angle=0.0, angle_rando
     out = None
     for layer in range(2):
         h, _ = tile_field(size, amount, amount, seed=seed * 2 + layer + 1, profile=line, scale=1.0,
-                          size_xy=size_xy, position_random=1.0, scale_random=length_random,
+                          size_xy=size_xy, position_random=0.5, scale_random=length_random,
                           rotation=angle, rotation_random=angle_random, luminance_random=luminance_random,
                           mask_random=mask_random, offset=0.5 * layer, device=device, dtype=dtype)
         out = h if out is None else torch.maximum(out, h)

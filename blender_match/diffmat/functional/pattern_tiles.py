@@ -26,6 +26,7 @@ def _image_profile(image):
     img = to_gray(image)
 
     def profile(x, y, w, spec, ex=None, ey=None):
+        x, y = torch.broadcast_tensors(x, y)
         b = max(x.shape[0], img.shape[0])
         grid = torch.stack([x[:, 0], y[:, 0]], dim=-1)
         grid = grid.expand(b, -1, -1, -1)

@@ -17,7 +17,7 @@ register(NodeSpec(
     params=(Param("radius", 6.0, 0.0, 64.0, doc="256-px pixels"),),
     doc="Highpass: detail above the radius, around mid-gray."))
 
-_SLOPE = (Param("samples", 8, 1, 32, kind="int", doc="at most 8 are taken"),
+_SLOPE = (Param("samples", 8, 1, 32, kind="int", doc="at most 4 are taken"),
           Param("mode", 1, kind="enum", choices=(0, 1, 5, 6), doc="0/1 blur, 5 max, 6 min"),
           Param("intensity", 10.0, -16.0, 16.0, doc="256-px pixels along the slope"))
 register(NodeSpec("slope_blur_grayscale", NA, F.slope_blur,

@@ -76,7 +76,7 @@ register(NodeSpec(
 register(NodeSpec(
     "scratches_generator", "generator", F.scratches,
     params=(Param("amount", 6, 1, 64, kind="int", doc="cells per image side (two lines per cell)"),
-            Param("length", 1.6, 0.0, 2.0, doc="line length, cells"),
+            Param("length", 1.4, 0.0, 2.0, doc="line length, cells"),
             Param("width", 0.02, 0.0, 0.2, doc="line width, cells"),
             Param("angle", 0.0, 0.0, 1.0, doc="turns"),
             Param("angle_random", 0.5, 0.0, 1.0, doc="turns of random spread"),
