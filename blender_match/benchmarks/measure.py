@@ -79,3 +79,34 @@ def best_of(fn, repeats: int = 3, device: str = "cpu") -> Measurement:
             best = m
     best.peak_bytes = peak
     return best
+
+
+def in_subprocess(function: str, *args, threads: int | None = None, timeout: float = 600.0):
+    """Run ``function`` ("package.module:name", returning a JSON-serialisable value) with ``args``
+    in a fresh Python process and return its result.
+
+    A fresh process gives a meaningful peak memory: the kernel's peak-RSS mark of a process that
+    has only imported, built and run one case, rather than that of a process whose allocator has
+    already grown to hold every earlier case (which then shows ~0 added peak).
+    """
+    import json
+    import subprocess
+    import sys
+
+    import torch
+
+    threads = threads or torch.get_num_threads()
+    module, _, name = function.partition(":")
+    code = ("import json, sys, torch\n"
+            f"torch.set_num_threads({int(threads)})\n"
+            f"from {module} import {name} as f\n"
+            f"r = f(*json.loads(sys.argv[1]))\n"
+            "sys.stdout.write('\\n@@RESULT ' + json.dumps(r) + '\\n')\n")
+    proc = subprocess.run([sys.executable, "-c", code, json.dumps(list(args))], capture_output=True,
+                          text=True, timeout=timeout)
+    if proc.returncode != 0:
+        raise RuntimeError(f"benchmark subprocess {function} failed:\n{proc.stderr[-2000:]}")
+    for line in reversed(proc.stdout.splitlines()):
+        if line.startswith("@@RESULT "):
+            return json.loads(line[len("@@RESULT "):])
+    raise RuntimeError(f"benchmark subprocess {function} printed no result")

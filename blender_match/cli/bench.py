@@ -2,8 +2,9 @@
 from __future__ import annotations
 
 import json
+from pathlib import Path
 
-SUITES = ("nodes",)
+SUITES = ("nodes", "translator", "library")
 
 
 def add_parser(sub):
@@ -11,6 +12,7 @@ def add_parser(sub):
     p.add_argument("what", nargs="?", choices=SUITES, default="nodes", help="which benchmark (default: nodes)")
     p.add_argument("--device", default="cpu", help="cpu, cuda or mps")
     p.add_argument("--threads", type=int, default=0, help="CPU threads for torch (0: torch's default)")
+    p.add_argument("--files", nargs="+", type=Path, help="input files, for suites that take them (translator)")
     p.add_argument("--json", action="store_true", help="print rows as JSON")
     p.set_defaults(run=run)
 
@@ -33,7 +35,8 @@ def run(args) -> int:
     if args.threads:
         torch.set_num_threads(args.threads)
     module = importlib.import_module(f"blender_match.benchmarks.{args.what}")
-    rows = module.run(device=args.device)
+    extra = {"files": args.files} if args.files else {}
+    rows = module.run(device=args.device, **extra)
     if args.json:
         print(json.dumps(rows, indent=1))
     else:

@@ -1,7 +1,10 @@
 """``blender-match render SOURCE``: evaluate a material graph and write its maps, plus
 ``render.png``, the material under the flash light.
 
-SOURCE is a bundled graph's name (``blender-match render --list``) or a Substance ``.sbs`` file.
+SOURCE is a bundled graph's name (``blender-match render --list``), a library graph's name
+(``blender-match library``) or a Substance ``.sbs`` file. ``--sample K`` (library graphs) renders the
+K-th random variant drawn from the graph's declared parameter ranges and writes the parameters it
+used to ``params.json`` in the output folder (a parameter file ``--params`` reads back).
 """
 from __future__ import annotations
 
@@ -11,28 +14,36 @@ from pathlib import Path
 
 
 def add_parser(sub):
-    p = sub.add_parser("render", help="render a graph's maps (bundled name or .sbs file)")
-    p.add_argument("source", nargs="?", help="bundled graph name or path to a .sbs file")
+    p = sub.add_parser("render", help="render a graph's maps (bundled or library name, or .sbs file)")
+    p.add_argument("source", nargs="?", help="bundled or library graph name, or path to a .sbs file")
     p.add_argument("--size", type=int, default=512, help="output size in pixels (power of two)")
     p.add_argument("--seed", type=int, default=0, help="graph random seed")
     p.add_argument("--out", type=Path, help="output folder")
+    group = p.add_mutually_exclusive_group()
+    group.add_argument("--params", type=Path, help="parameter file (JSON, as written by a match) to apply")
+    group.add_argument("--sample", type=int, metavar="K",
+                       help="library graphs: render the K-th random variant and write its params.json")
     p.add_argument("--overwrite", action="store_true", help="replace existing map files")
     p.add_argument("--list", action="store_true", help="list the bundled graphs")
     p.set_defaults(run=run)
 
 
 def load_graph(source: str):
-    """A MaterialGraph from a bundled name or an .sbs path."""
+    """A MaterialGraph from a bundled name, a library name or an .sbs path."""
     from ..bundled_graphs import BUNDLED, build
+    from ..library import library_names, load_library_graph
 
     if source in BUNDLED:
         return build(source)
+    if source in library_names():
+        return load_library_graph(source)
     path = Path(source)
     if path.suffix.lower() == ".sbs":
         from ..translator import load_sbs_graph
 
         return load_sbs_graph(path)
-    raise ValueError(f"{source}: not a bundled graph ({', '.join(sorted(BUNDLED))}) nor a .sbs file")
+    raise ValueError(f"{source}: not a bundled graph ({', '.join(sorted(BUNDLED))}), a library graph "
+                     f"({', '.join(library_names()) or 'none built'}) nor a .sbs file")
 
 
 def run(args) -> int:
@@ -53,7 +64,30 @@ def run(args) -> int:
     render_path = args.out / "render.png"
     if render_path.exists() and not args.overwrite:
         raise FileExistsError(f"{render_path}: already exists (use --overwrite to replace it)")
+    params_path = args.out / "params.json"
+    if args.sample is not None:
+        from ..library import library_names
+
+        if args.source not in library_names():
+            raise ValueError(f"{args.source}: --sample needs a library graph ({', '.join(library_names())})")
+        if args.sample < 0:
+            raise ValueError(f"--sample: expected a non-negative integer, got {args.sample}")
+        if params_path.exists() and not args.overwrite:
+            raise FileExistsError(f"{params_path}: already exists (use --overwrite to replace it)")
     graph = load_graph(args.source)
+    if args.sample is not None:
+        from ..diffmat.params_file import apply_params
+        from ..image_files import write_atomic
+        from ..library import sample_params
+
+        params = sample_params(args.source, args.sample)
+        apply_params(graph, params, f"{args.source} sample {args.sample}")
+        text = json.dumps({"graph": graph.name, "sample": args.sample, "params": params}, indent=1)
+        write_atomic(params_path, text.encode("utf-8"), overwrite=args.overwrite)
+    if args.params:
+        from ..diffmat.params_file import load_params
+
+        load_params(graph, args.params)
     start = time.perf_counter()
     with torch.no_grad():
         maps = graph(size=args.size, seed=args.seed)

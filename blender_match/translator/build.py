@@ -31,6 +31,7 @@ from collections import Counter
 
 from ..diffmat.functional import function_graph as fg_engine
 from ..diffmat.nodes import get_spec, has_spec
+from . import aliases
 from . import function_graphs as fgs
 from .errors import TranslatorError
 from .dataflow import toposort
@@ -86,7 +87,27 @@ def _library_candidates(name: str, filename: str | None) -> list[str]:
         out.append(stem)
     if re.search(r"_\d+$", low):  # perlin_noise_1 -> perlin_noise
         out.append(re.sub(r"_\d+$", "", low))
+    # spellings across library versions: directionnal/directional, _v2 / _legacy suffixes,
+    # spaces or dashes in the name
+    for variant in (low.replace("directionnal", "directional"), low.replace("directional_", "directionnal_"),
+                    re.sub(r"_(v\d+|legacy)$", "", low), re.sub(r"[^a-z0-9]+", "_", low).strip("_")):
+        out.append(variant)
     return list(dict.fromkeys(out))
+
+
+def _variant_candidates(name: str) -> list[str]:
+    """Approximate stand-ins tried after every exact spelling: the colour / grayscale twin of a
+    filter (``blur_hq_color`` -> ``blur_hq``, ``non_uniform_blur`` -> ``non_uniform_blur_grayscale``).
+    The translated node is reported as approximated (a warning)."""
+    low = name.lower()
+    out = []
+    if low.endswith("_color"):
+        out += [low[:-len("_color")], low[:-len("_color")] + "_grayscale"]
+    elif low.endswith("_grayscale"):
+        out.append(low[:-len("_grayscale")])
+    else:
+        out.append(low + "_grayscale")
+    return out
 
 
 def _split_path(path: str) -> tuple[str, str | None]:
@@ -109,6 +130,7 @@ class Stats:
         self.unsupported_functions: Counter = Counter()
         self.warnings: list[str] = []
         self.params_dropped = 0
+        self.dropped: Counter = Counter()   # "node.parameter" -> count (parameters the spec lacks)
         self.failed = 0
         self.unconnected_inputs: list[str] = []
 
@@ -462,7 +484,7 @@ class Builder:
         own = own.pop() if len(own) == 1 and len(spec.outputs) == 1 else None
         variant = own is not None and spec.kind != "generator" and spec.name not in NOT_VARIANT
         for ident, ref in image_conns:
-            slot = ident.lower().replace(":", "_")
+            slot = aliases.resolve_input(spec, ident) or ident.lower().replace(":", "_")
             if slot not in slots and len(spec.inputs) == 1 and len(image_conns) == 1:
                 slot = spec.inputs[0].name
             if slot not in slots:
@@ -477,16 +499,26 @@ class Builder:
                                                  size=size)
         node_seed = seed
         pixel = spec.name == "pixelprocessor"
+        if "randomseed" in node.params:
+            node_seed = self._seed(node.params["randomseed"], seed, label)
+        aliased = []
         for pname, p in node.params.items():
-            if pname == "randomseed":
-                node_seed = self._seed(p, seed, label)
+            if pname == "randomseed" or (pname in BASE_PARAMS and pname not in spec.param_index):
                 continue
-            if pname in BASE_PARAMS and pname not in spec.param_index:
-                continue
-            if pname not in spec.param_index:
+            targets = aliases.resolve_param(spec, pname)
+            if not targets:
                 self.stats.params_dropped += 1
+                self.stats.dropped[f"{spec.name}.{report_name(pname)}"] += 1
                 continue
-            self._param(ir, spec.param(pname), p, env, label, pixel, node_seed)
+            if targets == [(pname, None)]:
+                self._param(ir, spec.param(pname), p, env, label, pixel, node_seed)
+            else:
+                aliased.append((pname, p, targets))
+        for pname, p, targets in aliased:  # exact identifiers win over aliases
+            for target, component in targets:
+                if target not in ir.params and target not in ir.bindings:
+                    self._param(ir, spec.param(target), p, env, label, pixel, node_seed,
+                                component=component, ident=pname)
         if ("colorswitch" in spec.param_index and "colorswitch" not in ir.params and own is not None
                 and spec.param("colorswitch").kind == "bool"):
             ir.params["colorswitch"] = own == 4  # the file omits it: follow the output's recorded type
@@ -526,8 +558,11 @@ class Builder:
             return base
         return (base + value if p.relative_to == 1 else value) % (2 ** 31)
 
-    def _param(self, ir: IRNode, sp, p: Param, env, label, pixel: bool, seed: int):
+    def _param(self, ir: IRNode, sp, p: Param, env, label, pixel: bool, seed: int,
+               component: int | None = None, ident: str | None = None):
         where = f"{label}.{sp.name}"
+        spec_name = ir.spec
+        ident = ident or sp.name
         if p.error:
             self._function_error(p.error)
             self.stats.warn(f"{where}: {p.error}; default kept")
@@ -538,7 +573,7 @@ class Builder:
                 self.stats.warn(f"{where}: constant function; default kept")
                 return
             try:
-                ir.params[sp.name] = convert(sp, value.python())
+                ir.params[sp.name] = convert(sp, _adjust(value.python(), spec_name, sp.name, ident, component))
             except BadValue as exc:
                 self.stats.warn(f"{where}: {exc}; default kept")
             return
@@ -553,12 +588,15 @@ class Builder:
             ir.params[sp.name] = fg_engine.dumps(graph)
             return
         try:
-            value = convert(sp, self._fold(graph, seed))
-        except (fgs.FunctionError, BadValue) as exc:
+            raw = self._fold(graph, seed)
+            adjusted = _adjust(raw, spec_name, sp.name, ident, component)
+            value = convert(sp, adjusted)
+        except (fgs.FunctionError, BadValue, TypeError, ValueError) as exc:
             self.stats.warn(f"{where}: {exc}; default kept")
             return
         ir.params[sp.name] = value
-        if fgs.free_variables(graph) and self.mode != "all" and sp.kind != "string":
+        rescaled = component is not None or adjusted is not raw
+        if fgs.free_variables(graph) and self.mode != "all" and sp.kind != "string" and not rescaled:
             ir.bindings[sp.name] = graph
 
     def _array(self, ir: IRNode, spec, array: str, cells, label):
@@ -604,6 +642,11 @@ class Builder:
                 self.stats.warn(f"{where}: graph {safe_name(gname, 'graph')!r} not found in its package")
         for cand in _library_candidates(gname, filename):
             if has_spec(cand):
+                self._make(node, get_spec(cand), conns, env, refs, size, fmt, seed, where, origin=gname)
+                return
+        for cand in _variant_candidates(gname):
+            if has_spec(cand) and get_spec(cand).kind != "generator":
+                self.stats.warn(f"{where}: {safe_name(gname, 'graph')!r} approximated by {cand!r}")
                 self._make(node, get_spec(cand), conns, env, refs, size, fmt, seed, where, origin=gname)
                 return
         self._passthrough(node, gname, conns, refs, size)
@@ -678,6 +721,18 @@ def _default_value(value: Value | None, kind: str, n: int) -> Value:
     if kind == "bool":
         return Value("bool", 1, False)
     return Value(kind, n, tuple([0.0 if kind == "float" else 0] * n))
+
+
+def _adjust(value, spec_name: str, param: str, ident: str, component: int | None):
+    """The file value's ``component`` (when an alias spreads a vector over several parameters),
+    rescaled where the library's meaning differs from the spec's (aliases.convert_value)."""
+    if component is not None:
+        if not isinstance(value, (list, tuple)):
+            raise BadValue("a vector value is expected")
+        if component >= len(value):
+            raise BadValue(f"the value has no component {component}")
+        value = value[component]
+    return aliases.convert_value(spec_name, param, ident, value)
 
 
 def convert(sp, value):

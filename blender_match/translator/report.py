@@ -27,6 +27,7 @@ def make_report(*, path: str, ir: IRGraph, stats, pruned: list[str], params_opti
         "unsupported_functions": dict(sorted(stats.unsupported_functions.items())),
         "unconnected_graph_inputs": stats.unconnected_inputs,
         "params_dropped": stats.params_dropped,
+        "params_dropped_names": dict(sorted(getattr(stats, "dropped", {}).items())),
         "params_optimizable": params_optimizable,
         "exposed": [{"name": e.name, "kind": e.kind, "default": e.default} for e in ir.exposed],
         "bindings": sum(len(n.bindings) for n in ir.nodes.values()),

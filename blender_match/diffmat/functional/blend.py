@@ -40,7 +40,7 @@ from __future__ import annotations
 import torch
 
 from ..errors import DiffMatError
-from .common import COLOR, GRAY, check_choice, check_image, param2d, param4d
+from .common import COLOR, GRAY, _step, check_choice, check_image, param2d, param4d
 
 __all__ = ["blend"]
 
@@ -69,7 +69,10 @@ def _target(mode: int, fg: torch.Tensor, bg: torch.Tensor) -> torch.Tensor:
     if mode == 8:
         return bg / fg.clamp_min(_DIVIDE_EPS)
     if mode == 9:
-        return torch.where(bg < 0.5, 2 * fg * bg, 1 - 2 * (1 - fg) * (1 - bg))
+        # where(bg < 0.5, lo, hi) as lo + [bg >= 0.5] (hi - lo): an arithmetic mask is much cheaper
+        # than ``where`` on CPU, forward and backward
+        lo = 2 * fg * bg
+        return torch.addcmul(lo, _step(bg - 0.5), 1 - 2 * (1 - fg) * (1 - bg) - lo)
     if mode == 10:
         return 1 - (1 - fg) * (1 - bg)
     if mode == 11:

@@ -104,25 +104,74 @@ def sample_wrap(img: torch.Tensor, u: torch.Tensor, v: torch.Tensor, mode: str =
     ``u`` and ``v`` are (B, H, W) or (B, 1, H, W) in texture units (1 = one image width); any value
     is folded into [0, 1). Bilinear sampling across the seam reads the opposite edge, so a warp or
     transform of a tiling image tiles. Differentiable in the image and in (u, v).
+
+    Grayscale images go through ``grid_sample`` (fast for one channel); colour images through
+    four gathers shared by the channels (``grid_sample``'s CPU backward is slow for several
+    channels). Both are the same bilinear interpolation.
     """
     if u.dim() == 4:
         u, v = u[:, 0], v[:, 0]
     n, c, h, w = img.shape
+    if mode == "bilinear" and c > 1:
+        return _bilinear_gather(img, u, v)
     b = max(n, u.shape[0])
     padded = F.pad(img, (1, 1, 1, 1), mode="circular")
-    u = torch.remainder(u, 1.0)
-    v = torch.remainder(v, 1.0)
-    # pixel index in the padded image: texel i has its centre at (i + 0.5) / w and sits at i + 1.
-    x = u * w + 0.5
-    y = v * h + 0.5
-    gx = x / (w + 1) * 2 - 1
-    gy = y / (h + 1) * 2 - 1
-    grid = torch.stack([gx, gy], dim=-1)
+    # fold into [0, 1) (u - floor(u): torch.remainder is several times slower on CPU), then map
+    # texel i (centre (i + 0.5) / w, at i + 1 in the padded image) to grid_sample's [-1, 1]:
+    # g = (u w + 0.5) / (w + 1) * 2 - 1, one multiply-add.
+    grid = torch.stack([u, v], dim=-1)
+    grid = grid - torch.floor(grid.detach())
+    scale, shift = _grid_affine(w, h, img.device, img.dtype)
+    grid = torch.addcmul(shift, grid, scale)
     if padded.shape[0] != b:
         padded = padded.expand(b, -1, -1, -1)
     if grid.shape[0] != b:
         grid = grid.expand(b, -1, -1, -1)
     return F.grid_sample(padded, grid, mode=mode, padding_mode="border", align_corners=True)
+
+
+_AFFINE_CACHE: dict = {}
+
+
+def _grid_affine(w: int, h: int, device, dtype):
+    key = (w, h, str(device), dtype)
+    hit = _AFFINE_CACHE.get(key)
+    if hit is None:
+        scale = torch.tensor([2.0 * w / (w + 1), 2.0 * h / (h + 1)], dtype=dtype, device=device)
+        shift = torch.tensor([1.0 / (w + 1) - 1.0, 1.0 / (h + 1) - 1.0], dtype=dtype, device=device)
+        hit = _AFFINE_CACHE[key] = (scale, shift)
+    return hit
+
+
+def _bilinear_gather(img: torch.Tensor, u: torch.Tensor, v: torch.Tensor) -> torch.Tensor:
+    """Bilinear wrap-around sampling by gathering the four neighbours (power-of-two sizes: the
+    wrap is a bit mask). ``u``, ``v`` are (B, H', W')."""
+    n, c, h, w = img.shape
+    b = max(n, u.shape[0])
+    oh, ow = u.shape[-2:]
+    w1 = w + 1
+    padded = F.pad(img, (0, 1, 0, 1), mode="circular")           # (h + 1, w + 1): x0 + 1 never wraps
+    x = u * w - 0.5                                                  # pixel coordinates, centres at integers
+    y = v * h - 0.5
+    x0 = torch.floor(x.detach())
+    y0 = torch.floor(y.detach())
+    fx = (x - x0)[:, None]
+    fy = (y - y0)[:, None]
+    base = (y0.long() & (h - 1)) * w1 + (x0.long() & (w - 1))
+    base = base.reshape(base.shape[0], 1, oh * ow)
+    if base.shape[0] != b:
+        base = base.expand(b, -1, -1)
+    flat = padded.reshape(n, c, (h + 1) * w1)
+    if n != b:
+        flat = flat.expand(b, -1, -1)
+
+    def corner(offset: int) -> torch.Tensor:
+        idx = base + offset if offset else base
+        return torch.gather(flat, 2, idx.expand(-1, c, -1)).reshape(b, c, oh, ow)
+
+    top = torch.lerp(corner(0), corner(1), fx)
+    bottom = torch.lerp(corner(w1), corner(w1 + 1), fx)
+    return torch.lerp(top, bottom, fy)
 
 
 def frequencies(size: int, device=None, dtype=torch.float32) -> tuple[torch.Tensor, torch.Tensor]:
@@ -169,6 +218,13 @@ def gradient_wrap(img: torch.Tensor) -> tuple[torch.Tensor, torch.Tensor]:
     dx = (torch.roll(img, -1, dims=-1) - torch.roll(img, 1, dims=-1)) * (size / 2)
     dy = (torch.roll(img, -1, dims=-2) - torch.roll(img, 1, dims=-2)) * (size / 2)
     return dx, dy
+
+
+def _step(x: torch.Tensor) -> torch.Tensor:
+    """Float mask 1 where x >= 0, 0 where x < 0, built from arithmetic (on CPU, comparisons,
+    ``where`` and their backward passes are several times slower than a multiply). No gradient."""
+    with torch.no_grad():
+        return torch.sign(x).add_(1.0).clamp_(max=1.0).ceil_()   # -1 -> 0, 0 -> 1, 1 -> 1
 
 
 def lerp(a: torch.Tensor, b: torch.Tensor, w) -> torch.Tensor:

@@ -100,6 +100,139 @@ def _axis(res: int, n: int, device, dtype, interp: str, offset: float = 0.0):
     return i0, i1, f, _fade(f, interp)
 
 
+# ----------------------------------------------------------------------------------------------
+# separable lattice evaluation
+#
+# A layer of lattice noise is a sum of separable terms, out = Wy @ G @ Wx^T, where G is a small
+# (ny, nx) lattice (the values, or one gradient component) and Wy / Wx are (pixels x cells)
+# interpolation operators with two non-zeros a row (the fade weights of the two neighbouring
+# lattice points; gradient noise adds the "ramp" operator whose weights carry the offset from the
+# lattice point). Supersampling followed by box filtering is linear too, so it is folded into the
+# operators (averaged over a pixel's sub-samples): no supersampled image is ever built. Coarse axes
+# are applied as dense matrix products (one GEMM for all the coarse terms of a fractal sum); fine
+# axes as a few row gathers ("taps").
+_DENSE_MAX = 48           # lattices up to this many cells along an axis use dense products
+_AXIS_CACHE: dict = {}
+_PHASE_CACHE: dict = {}
+
+
+class _AxisOp:
+    """One axis operator: dense (size, n) matrix and its taps (idx (size, K) long, w (size, K))."""
+
+    __slots__ = ("n", "dense", "idx", "w", "cols")
+
+    def __init__(self, n, dense, idx, w):
+        self.n, self.dense, self.idx, self.w = n, dense, idx, w
+        self.cols = [(idx[:, k].contiguous(), w[:, k].contiguous()) for k in range(idx.shape[1])]
+
+
+def _axis_ops(size: int, n: int, ss: int, interp: str, offset: float, device, dtype) -> dict:
+    """The box-filtered ``lerp`` and ``ramp`` operators of an n-cell axis rendered at ``size``
+    pixels with ``ss`` sub-samples a pixel, lattice points ``offset`` cells in from the edge."""
+    key = (size, n, ss, interp, offset, str(device), dtype)
+    hit = _AXIS_CACHE.get(key)
+    if hit is not None:
+        return hit
+    res = size * ss
+    c = (torch.arange(res, dtype=torch.float64) + 0.5) / res * n - offset
+    i0 = torch.floor(c)
+    if interp == "nearest":
+        f = torch.zeros(res, dtype=torch.float64)
+    else:
+        f = c - i0
+    f = f.to(dtype).to(torch.float64)
+    w = _fade(f.to(dtype), interp).to(torch.float64) if interp != "nearest" else torch.zeros_like(f)
+    i0 = i0.long().view(size, ss)
+    base = i0[:, :1]
+    rel = i0 - base                                                     # (size, ss), small
+    k = int(rel.max()) + 2
+    ops = {}
+    for name, (w0, w1) in (("lerp", (1 - w, w)), ("ramp", ((1 - w) * f, w * (f - 1)))):
+        taps = torch.zeros(size, k, dtype=torch.float64)
+        taps.scatter_add_(1, rel, w0.view(size, ss) / ss)
+        taps.scatter_add_(1, rel + 1, w1.view(size, ss) / ss)
+        idx = torch.remainder(base + torch.arange(k), n)
+        dense = torch.zeros(size, n, dtype=torch.float64).scatter_add_(1, idx, taps)
+        ops[name] = _AxisOp(n, dense.to(device=device, dtype=dtype), idx.to(device),
+                            taps.to(device=device, dtype=dtype))
+    if len(_AXIS_CACHE) > 512:
+        _AXIS_CACHE.clear()
+    _AXIS_CACHE[key] = ops
+    return ops
+
+
+def _apply_x(g: torch.Tensor, op: _AxisOp) -> torch.Tensor:
+    """g (B, ny, nx) times op^T: (B, ny, size)."""
+    if op.n <= _DENSE_MAX:
+        return torch.matmul(g, op.dense.t())
+    out = None
+    for idx, w in op.cols:
+        t = g.index_select(-1, idx) * w
+        out = t if out is None else out + t
+    return out
+
+
+def _apply_y(terms, out=None):
+    """Sum of op_y @ t over ``terms`` [(op_y, t (B, ny, size))]: (B, size, size). Dense operators
+    are concatenated into one matrix product."""
+    dense = [(op, t) for op, t in terms if op.n <= _DENSE_MAX]
+    if dense:
+        a = torch.cat([op.dense for op, _ in dense], dim=1) if len(dense) > 1 else dense[0][0].dense
+        b = max(t.shape[0] for _, t in dense)
+        ts = [t.expand(b, -1, -1) for _, t in dense]
+        t = torch.cat(ts, dim=1) if len(ts) > 1 else ts[0]
+        prod = torch.matmul(a, t)
+        out = prod if out is None else out + prod
+    for op, t in terms:
+        if op.n <= _DENSE_MAX:
+            continue
+        for idx, w in op.cols:
+            rows = t.index_select(-2, idx)
+            out = rows * w[:, None] if out is None else torch.addcmul(out, rows, w[:, None])
+    return out
+
+
+def _phases_cached(seed, key, ny, nx, device, dtype):
+    k = (int(seed), repr(key), ny, nx, str(device), dtype)
+    hit = _PHASE_CACHE.get(k)
+    if hit is None:
+        hit = _phases(seed, key, ny, nx, device, dtype)
+        if len(_PHASE_CACHE) > 256:
+            _PHASE_CACHE.clear()
+        _PHASE_CACHE[k] = hit
+    return hit
+
+
+def _layer_terms(cells, size: int, *, seed, key, kind, interp, disorder, weight, device, dtype):
+    """The separable terms [(op_y, t)] of one lattice layer times ``weight`` (number or (B, 1, 1))
+    (see the section comment); the layer is ``_apply_y(terms)``."""
+    nx, ny = (cells, cells) if isinstance(cells, int) else (int(cells[0]), int(cells[1]))
+    nx, ny = max(nx, 1), max(ny, 1)
+    phi, speed = _phases_cached(seed, (key, kind), ny, nx, device, dtype)
+    d = _as_batch(disorder, device, dtype)
+    if isinstance(disorder, torch.Tensor) or d.shape[0] > 1 or float(d.reshape(-1)[0]) != 0.0:
+        theta = TWO_PI * (phi + speed * d)                               # (B, ny, nx)
+    else:
+        theta = TWO_PI * phi
+    ss = max(_supersample(size, nx), _supersample(size, ny))
+    # any lattice offset tiles; value noise is flattest at its lattice points and gradient noise
+    # steepest there, so value lattices sit on the image edge and gradient ones half a cell in.
+    off = 0.0 if kind == "value" else 0.5
+    if kind == "value":
+        ax = _axis_ops(size, nx, ss, interp, off, device, dtype)
+        ay = _axis_ops(size, ny, ss, interp, off, device, dtype)
+        w = weight / _STD[(kind, interp)]
+        return [(ay["lerp"], _apply_x(torch.cos(theta) * w, ax["lerp"]))]
+    if kind == "gradient":
+        interp_ = "linear" if interp == "nearest" else interp
+        ax = _axis_ops(size, nx, ss, interp_, off, device, dtype)
+        ay = _axis_ops(size, ny, ss, interp_, off, device, dtype)
+        w = weight / _STD[(kind, interp)]
+        gx, gy = torch.cos(theta) * w, torch.sin(theta) * w
+        return [(ay["lerp"], _apply_x(gx, ax["ramp"])), (ay["ramp"], _apply_x(gy, ax["lerp"]))]
+    raise ValueError(f"lattice_noise: unknown kind {kind!r}")
+
+
 def lattice_noise(cells, size: int, *, seed: int = 0, key="lattice", kind: str = "gradient",
                   interp: str = "quintic", disorder=0.0, device=None, dtype=torch.float32) -> torch.Tensor:
     """One layer of tileable lattice noise, zero mean and unit standard deviation: (B, 1, size, size).
@@ -108,42 +241,12 @@ def lattice_noise(cells, size: int, *, seed: int = 0, key="lattice", kind: str =
     differ). ``kind`` "value" interpolates random values, "gradient" is Perlin's gradient noise;
     ``interp`` is the fade ("quintic", "cubic", "linear", "nearest"). ``disorder`` (number or (B, 1))
     phase-shifts every lattice point (value = cos, gradient direction = angle of the phase).
+    Fine lattices (< 4 pixels a cell) are supersampled and box-filtered (folded into the
+    separable operators).
     """
-    nx, ny = (cells, cells) if isinstance(cells, int) else (int(cells[0]), int(cells[1]))
-    nx, ny = max(nx, 1), max(ny, 1)
-    phi, speed = _phases(seed, (key, kind), ny, nx, device, dtype)
-    d = _as_batch(disorder, device, dtype)
-    theta = TWO_PI * (phi + speed * d)                                   # (B, ny, nx)
-    ssx, ssy = _supersample(size, nx), _supersample(size, ny)
-    ss = max(ssx, ssy)
-    res = size * ss
-    # any lattice offset tiles; value noise is flattest at its lattice points and gradient noise
-    # steepest there, so value lattices sit on the image edge and gradient ones half a cell in.
-    off = 0.0 if kind == "value" else 0.5
-    ix0, ix1, fx, wx = _axis(res, nx, device, dtype, interp, off)
-    iy0, iy1, fy, wy = _axis(res, ny, device, dtype, interp, off)
-    wy_, fy_ = wy[:, None], fy[:, None]
-    if kind == "value":
-        lat = torch.cos(theta)
-        t = torch.lerp(lat.index_select(-1, ix0), lat.index_select(-1, ix1), wx)       # (B, ny, res)
-        out = torch.lerp(t.index_select(1, iy0), t.index_select(1, iy1), wy_)
-    elif kind == "gradient":
-        gx, gy = torch.cos(theta), torch.sin(theta)
-        if interp == "nearest":
-            interp_ = "linear"
-            ix0, ix1, fx, wx = _axis(res, nx, device, dtype, interp_, off)
-            iy0, iy1, fy, wy = _axis(res, ny, device, dtype, interp_, off)
-            wy_, fy_ = wy[:, None], fy[:, None]
-        a = gx.index_select(-1, ix0) * ((1 - wx) * fx) + gx.index_select(-1, ix1) * (wx * (fx - 1))
-        b = torch.lerp(gy.index_select(-1, ix0), gy.index_select(-1, ix1), wx)
-        out = torch.lerp(a.index_select(1, iy0), a.index_select(1, iy1), wy_)
-        out = out + b.index_select(1, iy0) * ((1 - wy_) * fy_) + b.index_select(1, iy1) * (wy_ * (fy_ - 1))
-    else:
-        raise ValueError(f"lattice_noise: unknown kind {kind!r}")
-    out = out[:, None] / _STD[(kind, interp)]
-    if ss > 1:
-        out = F.avg_pool2d(out, ss)
-    return out
+    terms = _layer_terms(cells, size, seed=seed, key=key, kind=kind, interp=interp, disorder=disorder,
+                         weight=1.0, device=device, dtype=dtype)
+    return _apply_y(terms)[:, None]
 
 
 def fractal_noise(cells, size: int, *, octaves: int, roughness=0.5, seed: int = 0, key="fractal",
@@ -156,11 +259,14 @@ def fractal_noise(cells, size: int, *, octaves: int, roughness=0.5, seed: int = 
     crests), "billow" (sum of 2|layer| - 1, puffy). Octaves finer than MAX_CELLS are dropped (their
     weight is negligible at every size the engine renders); octaves with fewer than two pixels a cell are
     left out of the render (an anti-aliasing prefilter) but kept in the normalisation, so the other
-    octaves have the same amplitude at every size.
+    octaves have the same amplitude at every size. A plain sum is evaluated as one batch of
+    separable terms (a single matrix product for all coarse octaves).
     """
     nx, ny = (cells, cells) if isinstance(cells, int) else (int(cells[0]), int(cells[1]))
     r = param4d(roughness).to(device=device, dtype=dtype)
+    rb = r.reshape(r.shape[0], 1, 1)
     total = None
+    terms = []
     norm = 0.0
     for o in range(first_octave, first_octave + octaves):
         f = lacunarity ** o
@@ -171,14 +277,21 @@ def fractal_noise(cells, size: int, *, octaves: int, roughness=0.5, seed: int = 
         norm = norm + w * w               # the norm counts every octave, rendered or not
         if 2 * max(cx, cy) > size and o > first_octave:
             continue                      # above Nyquist (< 2 pixels a cell): removed (prefilter)
-        layer = lattice_noise((cx, cy), size, seed=seed, key=(key, o), kind=kind, interp=interp,
-                              disorder=disorder, device=device, dtype=dtype)
+        if mode == "fbm":
+            wb = rb ** (o - first_octave) if o > first_octave else 1.0
+            terms += _layer_terms((cx, cy), size, seed=seed, key=(key, o), kind=kind, interp=interp,
+                                  disorder=disorder, weight=wb, device=device, dtype=dtype)
+            continue
+        layer = _apply_y(_layer_terms((cx, cy), size, seed=seed, key=(key, o), kind=kind, interp=interp,
+                                      disorder=disorder, weight=1.0, device=device, dtype=dtype))[:, None]
         if mode in ("ridged", "billow"):
             soft_abs = torch.sqrt(layer * layer + 0.01)       # |layer| with a rounded crease
             layer = (1.6 * soft_abs - 1.3) / 0.95
             if mode == "ridged":
                 layer = -layer
         total = layer * w if total is None else total + layer * w
+    if mode == "fbm":
+        total = _apply_y(terms)[:, None]
     return total / torch.sqrt(norm)
 
 

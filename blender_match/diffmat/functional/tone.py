@@ -12,7 +12,7 @@ import math
 import torch
 
 from ..errors import DiffMatError
-from .common import COLOR, GRAY, check_choice, check_image, param2d, param4d, to_color
+from .common import COLOR, GRAY, _step, check_choice, check_image, param2d, param4d, to_color
 
 __all__ = ["levels", "curve", "hsl", "grayscale_conversion", "channel_shuffle"]
 
@@ -57,8 +57,16 @@ def levels(input1: torch.Tensor, *, levelinlow=0.0, levelinmid=0.5, levelinhigh=
         t = t.clamp(0.0, 1.0)
     gamma = math.log(0.5) / torch.log(mid.clamp(_MID_LO, _MID_HI))
     if _needs_gamma(mid, gamma):
-        t = torch.where(t > 0, t.clamp_min(1e-12) ** gamma, t)
+        t = _gamma_positive(t, gamma)
     return torch.addcmul(olo, t, ohi - olo).clamp(0.0, 1.0)
+
+
+def _gamma_positive(t: torch.Tensor, gamma: torch.Tensor) -> torch.Tensor:
+    """t^gamma where t > 0, t elsewhere; exp(gamma log t) and arithmetic masks instead of ``pow``
+    with a tensor exponent and ``where`` (both slow on CPU, forward and backward)."""
+    y = torch.exp(torch.log(t.clamp_min(1e-12)) * gamma)
+    positive = 1.0 - _step(-t)
+    return torch.addcmul(t, positive, y - t)
 
 
 def _needs_gamma(mid: torch.Tensor, gamma: torch.Tensor) -> bool:
@@ -153,16 +161,20 @@ def curve(input1: torch.Tensor, *, positions=(0.0, 0.0, 1.0, 1.0), lefts=(0.0, 0
 
 def _rgb_to_hsl(rgb: torch.Tensor):
     r, g, b = rgb[:, 0:1], rgb[:, 1:2], rgb[:, 2:3]
-    mx = torch.maximum(torch.maximum(r, g), b)
-    mn = torch.minimum(torch.minimum(r, g), b)
+    mx = rgb.amax(dim=1, keepdim=True)
+    mn = rgb.amin(dim=1, keepdim=True)
     d = mx - mn
-    light = (mx + mn) / 2
-    gray = d < 1e-7
-    dd = torch.where(gray, torch.ones_like(d), d)
-    sat = torch.where(gray, torch.zeros_like(d), d / (1 - (2 * light - 1).abs()).clamp_min(1e-7)).clamp(0.0, 1.0)
-    hue = torch.where(mx == r, torch.remainder((g - b) / dd, 6.0),
-                      torch.where(mx == g, (b - r) / dd + 2, (r - g) / dd + 4)) / 6
-    hue = torch.where(gray, torch.zeros_like(hue), hue)
+    light = (mx + mn) * 0.5
+    colour = _step(d - 1e-7)                       # 0 on grays (d < 1e-7)
+    dd = d + (1.0 - colour)                        # d, or 1 on grays (no division by 0)
+    sat = (d / (1 - (2 * light - 1).abs()).clamp_min(1e-7)).clamp(0.0, 1.0) * colour
+    # hue sector by the largest channel (r first, then g, then b, as a chain of where)
+    is_r = _step(r - mx)
+    is_g = (1.0 - is_r) * _step(g - mx)
+    is_b = 1.0 - is_r - is_g
+    hr = (g - b) / dd
+    hr = hr + 6.0 * (1.0 - _step(hr))              # remainder(hr, 6) for hr in [-1, 1]
+    hue = (hr * is_r + ((b - r) / dd + 2) * is_g + ((r - g) / dd + 4) * is_b) * (colour / 6)
     return hue, sat, light
 
 
@@ -170,8 +182,9 @@ def _hsl_to_rgb(hue, sat, light):
     a = sat * torch.minimum(light, 1 - light)
     chans = []
     for n in (0.0, 8.0, 4.0):
-        k = torch.remainder(n + hue * 12, 12.0)
-        m = torch.minimum(torch.minimum(k - 3, 9 - k), torch.ones_like(k)).clamp_min(-1.0)
+        k = n + hue * 12
+        k = k - 12.0 * torch.floor(k.detach() / 12.0)     # remainder(k, 12) without torch.remainder
+        m = torch.minimum(k - 3, 9 - k).clamp(-1.0, 1.0)
         chans.append(light - a * m)
     return torch.cat(chans, dim=1)
 
@@ -193,8 +206,12 @@ def hsl(input1: torch.Tensor, *, hue=0.5, saturation=0.5, luminosity=0.5) -> tor
         if t.shape[1] != 1:
             raise DiffMatError(f"hsl.{name}: expected 1 component, got {t.shape[1]}")
     h = h + dh - 0.5
-    s = torch.where(ds <= 0, s * (1 + ds), s * (1 + (1 - s) * ds)).clamp(0.0, 1.0)
-    l = torch.where(dl <= 0, l * (1 + dl), l + (1 - l) * dl).clamp(0.0, 1.0)
+    # ds <= 0: s (1 + ds); above: s (1 + (1 - s) ds). dl <= 0: l (1 + dl); above: l + (1 - l) dl.
+    # The branch is chosen per batch item (a (B, 1, 1, 1) mask), not per pixel.
+    up_s = (ds > 0).to(ds.dtype)
+    up_l = (dl > 0).to(dl.dtype)
+    s = (s * (1 + ds * (1 - s * up_s))).clamp(0.0, 1.0)
+    l = (l + dl * (l + up_l * (1 - 2 * l))).clamp(0.0, 1.0)
     rgb = _hsl_to_rgb(h, s, l).clamp(0.0, 1.0)
     return torch.cat([rgb, x[:, 3:].expand(rgb.shape[0], -1, -1, -1)], dim=1)
 

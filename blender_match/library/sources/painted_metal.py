@@ -1,0 +1,113 @@
+"""Painted steel: a coat of enamel paint, chipped and scratched down to the bare metal.
+
+Structure: the wear mask is the union of chips (a grunge map and a fractal sum, histogram-scanned
+by the wear slider) and scratches (sparse white-noise dots smeared in two directions by directional
+blurs); the paint mask is its inverse, slightly blurred so chip edges have a rim. The paint gets a
+low-frequency tone variation (clouds) and a fine orange-peel relief (Perlin noise); the bare metal
+gets a brushed streak pattern. Base colour, roughness and metallic switch between paint and metal
+by the paint mask; height = paint thickness + orange peel + metal streaks; normal from height.
+
+Exposed parameters: ``paint_color`` (sRGB), ``paint_roughness``, ``metal_color`` (sRGB tint of the
+bare steel), ``metal_roughness``, ``wear`` (how much paint is gone), ``scratches`` (scratch
+amount), ``normal_intensity``.
+"""
+from blender_match.library.expressions import get, gray4, vector
+from blender_match.translator.runtime import SbsGraph
+
+
+def build() -> SbsGraph:
+    g = SbsGraph("painted_metal")
+    g.expose("paint_color", [0.11, 0.27, 0.45], min=0.0, max=1.0)
+    g.expose("paint_roughness", 0.42, min=0.1, max=0.9)
+    g.expose("metal_color", [0.62, 0.62, 0.64], min=0.0, max=1.0)
+    g.expose("metal_roughness", 0.32, min=0.05, max=0.8)
+    g.expose("wear", 0.3, min=0.0, max=1.0)
+    g.expose("scratches", 0.5, min=0.0, max=1.0)
+    g.expose("normal_intensity", 1.5, min=0.0, max=5.0)
+
+    # chips
+    g.add("chip_grunge", "bnw_spots_2", seed=17, scale=3.0, disorder=0.2)
+    g.add("chip_fractal", "fractal_sum_2", seed=4, scale=3.0, roughness=0.55)
+    g.add("chip_noise", "blend", {"source": "chip_fractal", "destination": "chip_grunge"},
+          blendingmode=9, opacitymult=0.6)
+    g.add("chips", "histogram_scan", {"input_1": "chip_noise"}, contrast=0.82)
+    g.bind("chips", "position", (0.05 + 0.5 * get("wear")).graph())
+
+    # scratches
+    g.add("scratch_dots", "white_noise", seed=29)
+    g.add("scratch_sparse", "histogram_scan", {"input_1": "scratch_dots"}, position=0.003, contrast=0.6)
+    g.add("scratch_a", "dirmotionblur", {"input1": "scratch_sparse"}, intensity=24.0, mblurangle=0.08)
+    g.add("scratch_shift", "transformation", {"input1": "scratch_sparse"}, offset=[0.21, 0.53])
+    g.add("scratch_b", "dirmotionblur", {"input1": "scratch_shift"}, intensity=16.0, mblurangle=0.71)
+    g.add("scratch_max", "blend", {"source": "scratch_b", "destination": "scratch_a"}, blendingmode=5)
+    g.add("scratch_mask", "histogram_scan", {"input_1": "scratch_max"}, contrast=0.7)
+    g.bind("scratch_mask", "position", (0.12 * get("scratches")).graph())
+
+    # paint mask
+    g.add("wear_mask", "blend", {"source": "scratch_mask", "destination": "chips"}, blendingmode=5)
+    g.add("paint_mask_sharp", "invert_grayscale", {"source": "wear_mask"})
+    g.add("paint_mask", "blur", {"input1": "paint_mask_sharp"}, intensity=0.6)
+
+    # paint colour and relief
+    g.add("paint_base", "uniform")
+    g.bind("paint_base", "outputcolor", vector(get("paint_color", 3), 1.0).graph())
+    g.add("paint_clouds", "clouds_2", seed=8, scale=2.0, disorder=0.1)
+    g.add("paint_tone", "uniform", outputcolor=[0.82, 0.83, 0.86, 1.0])
+    g.add("paint_color", "blend", {"source": "paint_tone", "destination": "paint_base", "opacity": "paint_clouds"},
+          blendingmode=3, opacitymult=0.35)
+    g.add("orange_peel", "perlin_noise", seed=2, scale=24.0, disorder=0.0)
+
+    # bare metal
+    g.add("metal_streaks", "anisotropic_noise", seed=13, x_amount=4, y_amount=160, smoothness=0.4)
+    g.add("metal_base", "uniform")
+    g.bind("metal_base", "outputcolor", vector(get("metal_color", 3), 1.0).graph())
+    g.add("metal_streak_color", "gradient", {"input1": "metal_streaks"}, positions=[0.0, 1.0],
+          colors=[0.86, 0.86, 0.87, 1.0, 1.0, 1.0, 1.0, 1.0])
+    g.add("metal_color", "blend", {"source": "metal_streak_color", "destination": "metal_base"}, blendingmode=3)
+
+    g.add("basecolor", "blend", {"source": "paint_color", "destination": "metal_color", "opacity": "paint_mask"})
+
+    # roughness
+    g.add("metal_rough", "histogram_range", {"input": "metal_streaks"}, range=0.12)
+    g.bind("metal_rough", "position", get("metal_roughness").graph())
+    g.add("paint_rough", "histogram_range", {"input": "paint_clouds"}, range=0.1)
+    g.bind("paint_rough", "position", get("paint_roughness").graph())
+    g.add("roughness", "blend", {"source": "paint_rough", "destination": "metal_rough", "opacity": "paint_mask"})
+
+    # metallic
+    g.add("metal_one", "uniform", colorswitch=False, outputcolor=[1.0, 1.0, 1.0, 1.0])
+    g.add("paint_zero", "uniform", colorswitch=False, outputcolor=[0.0, 0.0, 0.0, 1.0])
+    g.add("metallic", "blend", {"source": "paint_zero", "destination": "metal_one", "opacity": "paint_mask"})
+
+    # height
+    g.add("paint_height", "histogram_range", {"input": "paint_mask"}, range=0.3, position=0.55)
+    g.add("peel_height", "blend", {"source": "orange_peel", "destination": "paint_height",
+                                   "opacity": "paint_mask"}, blendingmode=4, opacitymult=0.06)
+    g.add("height", "blend", {"source": "metal_streaks", "destination": "peel_height",
+                              "opacity": "wear_mask"}, blendingmode=4, opacitymult=0.04)
+    g.add("normal", "normal", {"input1": "height"})
+    g.bind("normal", "intensity", get("normal_intensity").graph())
+
+    g.set_output("basecolor", "basecolor")
+    g.set_output("normal", "normal")
+    g.set_output("roughness", "roughness")
+    g.set_output("metallic", "metallic")
+    g.set_output("height", "height")
+    return g
+
+
+SAMPLE_RANGES = {
+    "exposed.paint_color": ([0.03, 0.03, 0.03], [0.75, 0.7, 0.65]),
+    "exposed.paint_roughness": (0.25, 0.7),
+    "exposed.metal_color": ([0.5, 0.5, 0.5], [0.75, 0.75, 0.77]),
+    "exposed.metal_roughness": (0.15, 0.55),
+    "exposed.wear": (0.1, 0.8),
+    "exposed.scratches": (0.0, 1.0),
+    "exposed.normal_intensity": (0.5, 3.0),
+    "chip_grunge.scale": (2.0, 5.0),
+    "chip_noise.opacitymult": (0.2, 0.9),
+    "chips.contrast": (0.6, 0.95),
+    "scratch_a.mblurangle": (0.0, 0.25),
+    "metal_one.outputcolor": (1.0, 1.0),
+    "paint_zero.outputcolor": (0.0, 0.0),
+}
