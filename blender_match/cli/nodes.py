@@ -1,4 +1,5 @@
-"""``blender-match nodes``: list the implemented nodes, or measure their coverage of real materials.
+"""``blender-match nodes``: list the implemented nodes (name, kind, inputs, outputs, parameters
+with range, default and whether optimisable), or measure their coverage of real materials.
 
 ``--coverage`` reads a node-usage table (Markdown, as in ``shared/reference/node_usage.md``: rows
 ``| name | uses | materials | …``) and prints the share of the library-node uses that the
@@ -63,8 +64,7 @@ def run(args) -> int:
         return 0
     specs = all_specs()
     if args.json:
-        print(json.dumps([{"name": s.name, "kind": s.kind,
-                           "params": [p.describe() for p in s.params]} for s in specs], indent=1))
+        print(json.dumps([s.describe() for s in specs], indent=1))
         return 0
     for s in specs:
         optimizable = sum(1 for p in s.params if p.continuous and p.optimizable)

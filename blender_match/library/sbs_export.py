@@ -235,6 +235,33 @@ def probe_channels(graph, size: int = 32) -> dict[tuple[str, str], int]:
     return seen
 
 
+def stable_order(graph) -> list[str]:
+    """The nodes that reach an output, sources first, deterministic: a depth-first walk from the
+    outputs (in usage order) through inputs in slot order (``MaterialGraph.order`` ties follow
+    set iteration, which changes between processes)."""
+    out: list[str] = []
+    state: dict[str, int] = {}
+    for usage in graph.outputs:
+        stack = [(graph.outputs[usage][0], False)]
+        while stack:
+            n, done = stack.pop()
+            if done:
+                if state[n] == 1:
+                    state[n] = 2
+                    out.append(n)
+                continue
+            if state.get(n):
+                if state[n] == 1:
+                    raise DiffMatError(f"graph {graph.name}: cycle through node {n!r}")
+                continue
+            state[n] = 1
+            stack.append((n, True))
+            for ref in reversed([r for r in graph.links[n] if r is not None]):
+                if not state.get(ref[0]):
+                    stack.append((ref[0], False))
+    return out
+
+
 def _depths(graph, order) -> dict[str, int]:
     depth: dict[str, int] = {}
     for n in order:
@@ -252,7 +279,8 @@ def export_sbs(graph, description: str = "", *, author: str = "blender_match") -
     """The ``.sbs`` document (XML text) of ``graph`` (an SbsGraph or a MaterialGraph)."""
     name = graph.name
     uids = _Uids(name)
-    order = graph.order()
+    graph.order()  # checks for cycles
+    order = stable_order(graph)
     channels = probe_channels(graph)
     bindings = getattr(graph, "bindings", {})
     exposed = getattr(graph, "exposed", None)

@@ -67,9 +67,9 @@ class Recipe:
 
 
 def _standardise(x: torch.Tensor) -> torch.Tensor:
-    m = x.mean(dim=(-2, -1), keepdim=True)
-    s = x.std(dim=(-2, -1), keepdim=True)
-    return (x - m) / (s + 1e-6)
+    s, m = torch.std_mean(x, dim=(-2, -1), keepdim=True)
+    inv = 1.0 / (s + 1e-6)
+    return torch.addcmul(-m * inv, x, inv)
 
 
 def _base_layer(r: Recipe, k: int, size: int, seed: int, key: str, disorder, roughness, device, dtype):
@@ -141,8 +141,9 @@ def noise_recipe(recipe: Recipe, *, scale=1.0, disorder=0.0, roughness=None, bal
     like = z
     gain = recipe.gain * torch.exp(3.0 * (param4d(contrast, like) - 0.5))
     offset = recipe.offset + 4.0 * (param4d(balance, like) - 0.5)
-    out = squash(z, gain, offset)
-    return 1 - out if recipe.invert else out
+    t = torch.tanh(torch.addcmul(offset, z, gain))
+    # squash (0.5 + 0.5 tanh), inverted when the recipe says so
+    return t.mul(-0.5 if recipe.invert else 0.5).add_(0.5)
 
 
 # ----------------------------------------------------------------------------------------------

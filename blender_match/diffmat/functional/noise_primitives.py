@@ -111,19 +111,48 @@ def _axis(res: int, n: int, device, dtype, interp: str, offset: float = 0.0):
 # operators (averaged over a pixel's sub-samples): no supersampled image is ever built. Coarse axes
 # are applied as dense matrix products (one GEMM for all the coarse terms of a fractal sum); fine
 # axes as a few row gathers ("taps").
-_DENSE_MAX = 48           # lattices up to this many cells along an axis use dense products
+_DENSE_MAX = 48           # x axes up to this many cells are dense products, finer ones taps
+_BLOCK = 32               # pixel rows a block of the banded y product
 _AXIS_CACHE: dict = {}
 _PHASE_CACHE: dict = {}
 
 
 class _AxisOp:
-    """One axis operator: dense (size, n) matrix and its taps (idx (size, K) long, w (size, K))."""
+    """One axis operator of an n-cell lattice rendered at ``size`` pixels: the dense (size, n)
+    matrix, its taps (pixel y reads cells base[y] + k, k < K, with weight w[y, k]) and, per block of
+    ``_BLOCK`` pixels, the window of cells the block reads (``banded``)."""
 
-    __slots__ = ("n", "dense", "idx", "w", "cols")
+    __slots__ = ("n", "size", "dense", "base", "w", "cols", "_band")
 
-    def __init__(self, n, dense, idx, w):
-        self.n, self.dense, self.idx, self.w = n, dense, idx, w
-        self.cols = [(idx[:, k].contiguous(), w[:, k].contiguous()) for k in range(idx.shape[1])]
+    def __init__(self, n, size, dense, base, w):
+        self.n, self.size, self.dense, self.base, self.w = n, size, dense, base, w
+        idx = torch.remainder(base[:, None] + torch.arange(w.shape[1], device=base.device), n)
+        self.cols = [(idx[:, k].contiguous(), w[:, k].contiguous()) for k in range(w.shape[1])]
+        self._band = None
+
+    def window(self) -> int:
+        """Cells read by one block of pixels (>= n: use the dense matrix)."""
+        return self.banded()[0]
+
+    def banded(self):
+        """(L, idx (nblocks * L) long, W (nblocks, R, L)): block b of R pixels reads cells
+        idx[b L: (b + 1) L] with weights W[b]."""
+        if self._band is None:
+            size, k = self.w.shape
+            r = min(_BLOCK, size)
+            nb = size // r
+            base = self.base.view(nb, r)
+            start = base[:, :1]
+            length = int((base[:, -1:] - start).max()) + k
+            if length >= self.n:
+                self._band = (length, None, None)
+                return self._band
+            rel = (base - start)[:, :, None] + torch.arange(k, device=base.device)     # (nb, r, k)
+            wb = torch.zeros(nb, r, length, dtype=self.w.dtype, device=self.w.device)
+            wb.scatter_add_(2, rel, self.w.view(nb, r, k))
+            idx = torch.remainder(start + torch.arange(length, device=base.device), self.n).reshape(-1)
+            self._band = (length, idx, wb)
+        return self._band
 
 
 def _axis_ops(size: int, n: int, ss: int, interp: str, offset: float, device, dtype) -> dict:
@@ -153,7 +182,7 @@ def _axis_ops(size: int, n: int, ss: int, interp: str, offset: float, device, dt
         taps.scatter_add_(1, rel + 1, w1.view(size, ss) / ss)
         idx = torch.remainder(base + torch.arange(k), n)
         dense = torch.zeros(size, n, dtype=torch.float64).scatter_add_(1, idx, taps)
-        ops[name] = _AxisOp(n, dense.to(device=device, dtype=dtype), idx.to(device),
+        ops[name] = _AxisOp(n, size, dense.to(device=device, dtype=dtype), base[:, 0].to(device),
                             taps.to(device=device, dtype=dtype))
     if len(_AXIS_CACHE) > 512:
         _AXIS_CACHE.clear()
@@ -172,23 +201,30 @@ def _apply_x(g: torch.Tensor, op: _AxisOp) -> torch.Tensor:
     return out
 
 
-def _apply_y(terms, out=None):
-    """Sum of op_y @ t over ``terms`` [(op_y, t (B, ny, size))]: (B, size, size). Dense operators
-    are concatenated into one matrix product."""
-    dense = [(op, t) for op, t in terms if op.n <= _DENSE_MAX]
+def _apply_y(terms):
+    """Sum of op_y @ t over ``terms`` [(op_y, t (B, ny, size))]: (B, size, size). Terms whose
+    blocks of pixels read the whole lattice are one dense matrix product; the others one batched
+    product over blocks of rows, each reading its window of lattice rows."""
+    dense = [(op, t) for op, t in terms if op.window() >= op.n]
+    band = [(op, t) for op, t in terms if op.window() < op.n]
+    out = None
     if dense:
         a = torch.cat([op.dense for op, _ in dense], dim=1) if len(dense) > 1 else dense[0][0].dense
         b = max(t.shape[0] for _, t in dense)
         ts = [t.expand(b, -1, -1) for _, t in dense]
-        t = torch.cat(ts, dim=1) if len(ts) > 1 else ts[0]
-        prod = torch.matmul(a, t)
+        out = torch.matmul(a, torch.cat(ts, dim=1) if len(ts) > 1 else ts[0])
+    if band:
+        size = band[0][0].size
+        b = max(t.shape[0] for _, t in band)
+        ws, rows = [], []
+        for op, t in band:
+            length, idx, wb = op.banded()
+            ws.append(wb)
+            rows.append(t.index_select(-2, idx).view(t.shape[0], wb.shape[0], length, size).expand(b, -1, -1, -1))
+        w = torch.cat(ws, dim=2) if len(ws) > 1 else ws[0]
+        r = torch.cat(rows, dim=2) if len(rows) > 1 else rows[0]
+        prod = torch.matmul(w, r).view(b, size, size)
         out = prod if out is None else out + prod
-    for op, t in terms:
-        if op.n <= _DENSE_MAX:
-            continue
-        for idx, w in op.cols:
-            rows = t.index_select(-2, idx)
-            out = rows * w[:, None] if out is None else torch.addcmul(out, rows, w[:, None])
     return out
 
 
@@ -268,6 +304,7 @@ def fractal_noise(cells, size: int, *, octaves: int, roughness=0.5, seed: int = 
     total = None
     terms = []
     norm = 0.0
+    bias = 0.0
     for o in range(first_octave, first_octave + octaves):
         f = lacunarity ** o
         cx, cy = nx * f, ny * f
@@ -285,14 +322,24 @@ def fractal_noise(cells, size: int, *, octaves: int, roughness=0.5, seed: int = 
         layer = _apply_y(_layer_terms((cx, cy), size, seed=seed, key=(key, o), kind=kind, interp=interp,
                                       disorder=disorder, weight=1.0, device=device, dtype=dtype))[:, None]
         if mode in ("ridged", "billow"):
-            soft_abs = torch.sqrt(layer * layer + 0.01)       # |layer| with a rounded crease
-            layer = (1.6 * soft_abs - 1.3) / 0.95
-            if mode == "ridged":
-                layer = -layer
-        total = layer * w if total is None else total + layer * w
+            # (1.6 |layer|~ - 1.3) / 0.95, |layer|~ = sqrt(layer^2 + 0.01) (a rounded crease), negated
+            # when ridged; the constant part is added once at the end
+            soft_abs = torch.hypot(layer, _const(0.1, layer))
+            sign = -1.0 if mode == "ridged" else 1.0
+            gain = w * (sign * 1.6 / 0.95)
+            bias = bias + w * (-sign * 1.3 / 0.95)
+            total = soft_abs * gain if total is None else torch.addcmul(total, soft_abs, gain)
+        else:
+            total = layer * w if total is None else torch.addcmul(total, layer, w)
     if mode == "fbm":
         total = _apply_y(terms)[:, None]
-    return total / torch.sqrt(norm)
+        return total * torch.rsqrt(norm)
+    inv = torch.rsqrt(norm)
+    return torch.addcmul(bias * inv, total, inv)
+
+
+def _const(value: float, like: torch.Tensor) -> torch.Tensor:
+    return torch.tensor(value, device=like.device, dtype=like.dtype)
 
 
 # ----------------------------------------------------------------------------------------------
@@ -456,7 +503,8 @@ def blend_scales(scale, render: Callable[[int, torch.Tensor], torch.Tensor], *, 
         return lo
     hi = torch.stack([renders[int(k0[b]) + 1][b] for b in range(nb)])
     t = t.reshape(-1, 1, 1, 1)
-    return ((1 - t) * lo + t * hi) / torch.sqrt((1 - t) ** 2 + t ** 2)
+    inv = torch.rsqrt((1 - t) ** 2 + t ** 2)
+    return torch.addcmul(lo * ((1 - t) * inv), hi, t * inv)
 
 
 def domain_warp(img: torch.Tensor, du: torch.Tensor, dv: torch.Tensor, amount) -> torch.Tensor:
@@ -476,7 +524,12 @@ def domain_warp(img: torch.Tensor, du: torch.Tensor, dv: torch.Tensor, amount) -
 
 def squash(x: torch.Tensor, gain=1.0, offset=0.0) -> torch.Tensor:
     """Map a zero-mean signal to (0, 1) smoothly: 0.5 + 0.5 tanh(gain x + offset)."""
-    return 0.5 + 0.5 * torch.tanh(x * gain + offset)
+    if isinstance(gain, torch.Tensor) or isinstance(offset, torch.Tensor):
+        y = torch.addcmul(torch.as_tensor(offset, dtype=x.dtype, device=x.device), x,
+                          torch.as_tensor(gain, dtype=x.dtype, device=x.device))
+    else:
+        y = x * gain + offset if offset != 0 else x * gain
+    return torch.tanh(y).mul(0.5).add_(0.5)
 
 
 def select_rows(p, idx: torch.Tensor):

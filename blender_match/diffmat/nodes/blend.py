@@ -14,8 +14,10 @@ register(NodeSpec(
         Param("opacitymult", 1.0, doc="opacity; multiplies the opacity mask"),
         Param("alphablending", 0, kind="enum", choices=(0, 1, 2, 3),
               doc="0 use source alpha, 1 ignore alpha, 2 straight, 3 premultiplied"),
-        Param("maskrectangle", (0.0, 1.0, 0.0, 1.0), size=4,
-              doc="cropping area left right top bottom (texture units); outside it only the background shows"),
+        Param("maskrectangle", (0.0, 1.0, 0.0, 1.0), size=4, optimizable=False,
+              doc="cropping area left right top bottom (texture units); outside it only the background "
+                  "shows. Not optimised: materials rarely crop a blend, and four values per blend would "
+                  "crowd the parameter vector"),
     ),
     doc="Blend: composites the foreground (source) over the background (destination, primary) with a "
         "blending mode, an opacity and an optional grayscale opacity mask."))

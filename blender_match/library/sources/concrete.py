@@ -116,7 +116,7 @@ def build() -> SbsGraph:
 
 
 SAMPLE_RANGES = {
-    "exposed.color": ([0.35, 0.34, 0.32], [0.68, 0.67, 0.65]),
+    "exposed.color": ([0.40, 0.39, 0.37], [0.62, 0.61, 0.59]),
     "exposed.scale": (0.6, 1.8),
     "exposed.wear": (0.0, 0.9),
     "exposed.pores": (0.1, 0.9),
@@ -124,9 +124,9 @@ SAMPLE_RANGES = {
     "exposed.relief": (0.25, 0.9),
     "tone.opacitymult": (0.2, 0.7),
     "tone_grain.opacitymult": (0.08, 0.3),
-    "variation.colors": ([0.7, 0.7, 0.7, 1.0, 0.88, 0.87, 0.86, 1.0, 0.96, 0.95, 0.93, 1.0],
-                         [0.9, 0.9, 0.9, 1.0, 0.97, 0.97, 0.96, 1.0, 1.0, 1.0, 1.0, 1.0]),
-    "stain_color.outputcolor": ([0.65, 0.62, 0.56, 1.0], [0.9, 0.9, 0.88, 1.0]),
+    "variation.colors": ([0.76, 0.76, 0.76, 1.0, 0.9, 0.9, 0.89, 1.0, 0.97, 0.97, 0.96, 1.0],
+                         [0.84, 0.84, 0.84, 1.0, 0.95, 0.95, 0.94, 1.0, 1.0, 1.0, 0.99, 1.0]),
+    "stain_color.outputcolor": ([0.72, 0.70, 0.66, 1.0], [0.84, 0.82, 0.78, 1.0]),
     "h_pores.opacitymult": (0.2, 0.7),
     "h_cracks.opacitymult": (0.15, 0.6),
 }

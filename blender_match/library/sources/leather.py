@@ -1,8 +1,8 @@
 """Leather: full-grain, dyed cowhide (upholstery/bag leather) with a pebbled grain and wrinkles.
 
 Structure
-- Grain: a fine Voronoi-like cell pattern (Cells 1) warped by a Perlin noise so the pebbles are
-  irregular, shaped into rounded domes with a histogram scan; tiny pores (BnW Spots 3) sink into it.
+- Grain: a fine Voronoi-like cell pattern (Cells 1) warped by a cloud noise so the pebbles are
+  irregular, shaped into rounded domes with a histogram scan, their heights varied by a fine Perlin noise; tiny pores (BnW Spots 3) sink into it.
 - Wrinkles: thin crease lines taken as an iso-line band of the Creased generator (histogram
   select), warped, blurred, and cut into the grain (depth exposed), plus the generator's broad
   folds as a low-frequency undulation.
@@ -42,25 +42,27 @@ def build() -> SbsGraph:
     g.expose("roughness", 0.55, min=0.2, max=0.95)
 
     # ---- grain -------------------------------------------------------------------------------
-    g.add("cells", "cells_1", seed=41, scale=28, disorder=0.6)
-    g.add("grain_noise", "perlin_noise_1", seed=42, scale=24.0)
-    g.add("cells_warp", "warp", {"input1": "cells", "inputgradient": "grain_noise"}, intensity=0.3)
+    g.add("cells", "cells_1", seed=41, scale=40, disorder=0.6)
+    g.add("fold_noise", "clouds_1", seed=45, scale=4.0)
+    g.add("cells_warp", "warp", {"input1": "cells", "inputgradient": "fold_noise"}, intensity=0.05)
     g.add("pebbles", "histogram_scan", {"input_1": "cells_warp"}, position=0.6, contrast=0.15)
     g.add("pores_noise", "bnw_spots_3", seed=43, scale=20.0)
     g.add("pores", "histogram_scan", {"input_1": "pores_noise"}, position=0.2, contrast=0.5, invert_position=True)
 
     # ---- wrinkles and folds ------------------------------------------------------------------
     g.add("creased", "creased", seed=44, scale=3, disorder=0.3, folds=10)
-    g.add("fold_noise", "clouds_1", seed=45, scale=4.0)
-    g.add("creased_warp", "warp", {"input1": "creased", "inputgradient": "fold_noise"}, intensity=0.6)
-    g.add("crease_lines", "histogram_select", {"input": "creased_warp"}, position=0.45, range=0.03, contrast=0.4)
+    g.add("creased_warp", "warp", {"input1": "creased", "inputgradient": "fold_noise"}, intensity=0.15)
+    g.add("crease_lines", "histogram_select", {"input": "creased_warp"}, position=0.45, range=0.01, contrast=0.93)
     g.add("crease_soft", "blur_hq_grayscale", {"source": "crease_lines"}, intensity=0.8)
 
     # ---- height ------------------------------------------------------------------------------
-    g.add("grain_level", "histogram_range", {"input": "pebbles"}, range=0.5, position=0.6)
+    g.add("pebble_noise", "perlin_noise_1", seed=42, scale=32.0)
+    g.add("pebbles_varied", "blend", {"source": "pebble_noise", "destination": "pebbles"},
+          blendingmode=MULTIPLY, opacitymult=0.35)
+    g.add("grain_level", "histogram_range", {"input": "pebbles_varied"}, range=0.5, position=0.6)
     g.bind("grain_level", "range", lerp(0.1, 0.9, get("grain_depth")).graph())
     g.add("folded", "blend", {"source": "creased_warp", "destination": "grain_level"},
-          blendingmode=ADD_SUB, opacitymult=0.15)
+          blendingmode=ADD_SUB, opacitymult=0.08)
     g.add("wrinkled", "blend", {"source": "crease_soft", "destination": "folded"},
           blendingmode=SUBTRACT, opacitymult=0.35)
     g.bind("wrinkled", "opacitymult", lerp(0.0, 0.7, get("wrinkles")).graph())
@@ -116,7 +118,7 @@ SAMPLE_RANGES = {
     "exposed.wear": (0.0, 0.8),
     "exposed.roughness": (0.35, 0.8),
     "cells.disorder": (0.3, 0.9),
-    "cells_warp.intensity": (0.1, 0.6),
+    "cells_warp.intensity": (0.0, 0.12),
     "pebbles.position": (0.45, 0.75),
     "normal_main.intensity": (1.5, 6.0),
     "dye_mottled.opacitymult": (0.3, 1.0),

@@ -43,12 +43,13 @@ def build() -> SbsGraph:
     g.bind("fine_noise", "scale", (scale * 4.0).graph())
     g.add("turb", "fractal_sum_1", seed=33, scale=3.0, roughness=0.6)
     g.add("cloudy", "clouds_1", seed=34, scale=3.0)
+    g.add("turb_smooth", "blur_hq_grayscale", {"source": "turb"}, intensity=5.0)
 
     # ---- main veins ---------------------------------------------------------------------------------
     g.add("base_smooth", "blur_hq_grayscale", {"source": "base_noise"}, intensity=7.0)
     g.add("base_contrast", "contrast_luminosity_grayscale", {"input": "base_smooth"}, contrast=0.55)
-    g.add("warped", "warp", {"input1": "base_contrast", "inputgradient": "turb"}, intensity=1.5)
-    g.bind("warped", "intensity", lerp(0.2, 3.0, turbulence).graph())
+    g.add("warped", "warp", {"input1": "base_contrast", "inputgradient": "turb_smooth"}, intensity=0.35)
+    g.bind("warped", "intensity", lerp(0.05, 0.7, turbulence).graph())
     g.add("vein_main", "histogram_select", {"input": "warped"}, position=0.5, range=0.012, contrast=0.75)
     g.bind("vein_main", "range", lerp(0.003, 0.025, veins).graph())
     g.add("vein_halo", "blur_hq_grayscale", {"source": "vein_main"}, intensity=2.5)
@@ -56,8 +57,8 @@ def build() -> SbsGraph:
     # ---- secondary fine veins ---------------------------------------------------------------------
     g.add("fine_smooth", "blur_hq_grayscale", {"source": "fine_noise"}, intensity=4.0)
     g.add("fine_contrast", "contrast_luminosity_grayscale", {"input": "fine_smooth"}, contrast=0.5)
-    g.add("warped_fine", "warp", {"input1": "fine_contrast", "inputgradient": "turb"}, intensity=1.0)
-    g.bind("warped_fine", "intensity", lerp(0.1, 2.0, turbulence).graph())
+    g.add("warped_fine", "warp", {"input1": "fine_contrast", "inputgradient": "turb_smooth"}, intensity=0.25)
+    g.bind("warped_fine", "intensity", lerp(0.03, 0.5, turbulence).graph())
     g.add("vein_fine", "histogram_select", {"input": "warped_fine"}, position=0.45, range=0.004, contrast=0.8)
     g.bind("vein_fine", "range", lerp(0.001, 0.008, veins).graph())
     g.add("vein_fine_mask", "blend", {"source": "cloudy", "destination": "vein_fine"}, blendingmode=3,

@@ -96,15 +96,15 @@ def build() -> SbsGraph:
 
 
 SAMPLE_RANGES = {
-    "exposed.color": ([0.35, 0.28, 0.18], [0.92, 0.90, 0.86]),
+    "exposed.color": ([0.50, 0.42, 0.30], [0.72, 0.62, 0.48]),
     "exposed.bump_scale": (0.6, 1.8),
     "exposed.bumps": (0.15, 0.95),
     "exposed.trowel": (0.0, 1.0),
     "exposed.roughness": (0.55, 0.95),
     "exposed.relief": (0.2, 0.9),
     "shade_src.opacitymult": (0.1, 0.5),
-    "variation.colors": ([0.6, 0.6, 0.6, 1.0, 0.85, 0.84, 0.83, 1.0, 0.95, 0.95, 0.95, 1.0],
-                         [0.85, 0.85, 0.85, 1.0, 0.95, 0.95, 0.95, 1.0, 1.0, 1.0, 1.0, 1.0]),
+    "variation.colors": ([0.68, 0.67, 0.66, 1.0, 0.88, 0.87, 0.86, 1.0, 0.98, 0.98, 0.97, 1.0],
+                         [0.8, 0.78, 0.76, 1.0, 0.94, 0.93, 0.92, 1.0, 1.0, 1.0, 1.0, 1.0]),
     "bumps_soft.intensity": (0.4, 3.0),
     "h_grain.opacitymult": (0.02, 0.16),
 }

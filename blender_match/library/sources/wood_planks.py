@@ -128,7 +128,7 @@ def build() -> SbsGraph:
 
 
 SAMPLE_RANGES = {
-    "exposed.wood_color": ((0.40, 0.24, 0.12), (0.68, 0.42, 0.26)),
+    "exposed.wood_color": ((0.42, 0.24, 0.12), (0.68, 0.40, 0.24)),
     "exposed.grain_contrast": (0.1, 0.7),
     "exposed.plank_variation": (0.2, 0.9),
     "exposed.roughness": (0.25, 0.7),
