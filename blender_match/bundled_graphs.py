@@ -9,12 +9,7 @@ from __future__ import annotations
 from typing import Callable
 
 from .diffmat import MaterialGraph
-
-MULTIPLY, ADD, SUBTRACT, ADD_SUB, MAX, OVERLAY, SCREEN, COPY = 3, 1, 2, 4, 5, 9, 10, 0
-
-
-def _gradient(stops: list[tuple[float, tuple[float, float, float]]]) -> dict:
-    return {"positions": [p for p, _ in stops], "colors": [c for _, rgb in stops for c in (*rgb, 1.0)]}
+from .library.authoring import ADD, ADD_SUB, MAX, MULTIPLY, OVERLAY, SCREEN, SUBTRACT, gradient_keys
 
 
 def _rgba(r: float, g: float, b: float) -> dict:
@@ -55,9 +50,9 @@ def worn_stone_tiles() -> MaterialGraph:
     g.add("ao", "ambient_occlusion_2", {"source": "height"})
     # base colour
     g.add("stone", "gradient", {"input1": "height"},
-          **_gradient([(0.0, (0.18, 0.16, 0.14)), (0.6, (0.52, 0.47, 0.40)), (1.0, (0.74, 0.69, 0.60))]))
+          **gradient_keys([(0.0, (0.18, 0.16, 0.14)), (0.6, (0.52, 0.47, 0.40)), (1.0, (0.74, 0.69, 0.60))]))
     g.add("tint", "gradient", {"input1": "clouds"},
-          **_gradient([(0.0, (0.45, 0.42, 0.38)), (1.0, (0.62, 0.55, 0.47))]))
+          **gradient_keys([(0.0, (0.45, 0.42, 0.38)), (1.0, (0.62, 0.55, 0.47))]))
     g.add("tint_warp", "directionalwarp", {"input1": "tint", "inputintensity": "perlin_zoom"}, intensity=4.0)
     g.add("tinted", "blend", {"source": "tint_warp", "destination": "stone"}, blendingmode=OVERLAY, opacitymult=0.4)
     g.add("dirt_mask", "levels", {"input1": "dirt"}, levelinlow=(0.3, 0.3, 0.3, 0.0))
@@ -67,7 +62,7 @@ def worn_stone_tiles() -> MaterialGraph:
     g.add("edge_color", "uniform", **_rgba(0.80, 0.77, 0.70))
     g.add("worn_edges", "blend", {"source": "edge_color", "destination": "dirty", "opacity": "edge_mask"},
           blendingmode=SCREEN, opacitymult=0.5)
-    g.add("ao_rgb", "gradient", {"input1": "ao"}, **_gradient([(0.0, (0.0, 0.0, 0.0)), (1.0, (1.0, 1.0, 1.0))]))
+    g.add("ao_rgb", "gradient", {"input1": "ao"}, **gradient_keys([(0.0, (0.0, 0.0, 0.0)), (1.0, (1.0, 1.0, 1.0))]))
     g.add("occluded", "blend", {"source": "ao_rgb", "destination": "worn_edges"}, blendingmode=MULTIPLY, opacitymult=0.7)
     g.add("graded", "hsl", {"input1": "occluded"}, saturation=0.45, luminosity=0.52)
     g.add("basecolor", "sharpen", {"input1": "graded"}, intensity=0.5)

@@ -6,7 +6,7 @@ import json
 import pytest
 
 from blender_match.cli import main
-from blender_match.image_files import read_image
+from blender_match.diffmat.functional.inputs import load_image as read_image
 
 
 def test_nodes_json_lists_every_kind_with_parameter_ranges(capsys):
@@ -41,7 +41,7 @@ def test_render_bundled_example_writes_maps_and_refuses_to_overwrite(tmp_path, c
     names = {p.name for p in out.iterdir()}
     assert {"basecolor.png", "normal.png", "roughness.png", "metallic.png", "height.png", "render.png"} <= names
     normal = read_image(out / "normal.png")
-    assert normal.shape == (1, 3, 64, 64)
+    assert normal.shape == (1, 4, 64, 64)
     assert 0.4 < normal[0, 2].mean() and normal[0, 2].min() >= 0.5  # OpenGL normals point up (+z)
     before = (out / "basecolor.png").read_bytes()
     assert main(["render", "example", "--size", "64", "--out", str(out)]) == 2

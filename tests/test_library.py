@@ -3,8 +3,7 @@ with no pass-through node into a graph that evaluates to the source's maps, its 
 random variants differ; and the CLI (library --json / --sheet, render NAME --sample).
 
 Materials are discovered from ``blender_match/library/sources``, so new ones join automatically.
-Maps are checked for tiling at 512 for every graph and at 2048 for a cheap subset (all of them
-with BLENDER_MATCH_LIBRARY_FULL=1).
+Maps are checked for tiling at 512 and at 2048 for every graph.
 """
 from __future__ import annotations
 
@@ -25,8 +24,6 @@ from imagecheck import assert_tiles
 
 SOURCES = source_names()
 USAGES = {"basecolor", "normal", "roughness", "metallic", "height"}
-FULL = os.environ.get("BLENDER_MATCH_LIBRARY_FULL") == "1"
-SUBSET_2048 = SOURCES if FULL else [n for n in ("terrazzo",) if n in SOURCES] or SOURCES[:1]
 
 
 @lru_cache(maxsize=None)
@@ -98,7 +95,7 @@ def test_maps_tile_and_are_plausible_at_512(name):
     assert 0.02 <= rough.mean().item() <= 0.98
 
 
-@pytest.mark.parametrize("name", SUBSET_2048)
+@pytest.mark.parametrize("name", SOURCES)
 def test_maps_tile_at_2048(name):
     with torch.no_grad():
         maps = translated(name)(size=2048)

@@ -72,7 +72,7 @@ def run(args) -> int:
         print(json.dumps(entries(), indent=1))
     if args.sheet is not None:
         from ..diffmat.functional.common import check_size
-        from ..image_files import write_atomic
+        from ..safe_files import write_atomic
 
         if args.sheet.exists() and not args.overwrite:
             raise FileExistsError(f"{args.sheet}: already exists (use --overwrite to replace it)")

@@ -77,7 +77,7 @@ def run(args) -> int:
     graph = load_graph(args.source)
     if args.sample is not None:
         from ..diffmat.params_file import apply_params
-        from ..image_files import write_atomic
+        from ..safe_files import write_atomic
         from ..library import sample_params
 
         params = sample_params(args.source, args.sample)

@@ -2,12 +2,15 @@
 
 Writes ``<graph>.py`` (a module whose ``build()`` rebuilds the graph with DiffMat calls) into
 ``--out`` (default: the current directory), and a JSON coverage report when ``--report`` is given;
-prints a one-line summary.
+prints a one-line summary. Files are written atomically; existing ones are kept unless
+``--overwrite``.
 """
 from __future__ import annotations
 
 import json
-import os
+from pathlib import Path
+
+from ..safe_files import write_atomic
 
 
 def add_parser(subparsers):
@@ -19,6 +22,7 @@ def add_parser(subparsers):
     parser.add_argument("--graph", metavar="NAME", help="which graph of the package (default: the first material graph)")
     parser.add_argument("--mode", choices=("exposed", "exposed_plus", "all"), default="exposed_plus",
                         help="which parameters are optimisable (default: exposed_plus)")
+    parser.add_argument("--overwrite", action="store_true", help="replace an existing program or report")
     parser.set_defaults(run=run)
     return parser
 
@@ -28,16 +32,16 @@ def run(args) -> int:
 
     result = translate(args.sbs, args.graph, args.mode)
     report = result.report
-    os.makedirs(args.out, exist_ok=True)
-    program_path = os.path.join(args.out, f"{report['graph']}.py")
-    with open(program_path, "w", encoding="utf-8") as fh:
-        fh.write(result.program)
-    report = dict(report, program=program_path)
-    if args.report:
-        folder = os.path.dirname(os.path.abspath(args.report))
-        os.makedirs(folder, exist_ok=True)
-        with open(args.report, "w", encoding="utf-8") as fh:
-            json.dump(report, fh, indent=2, sort_keys=True)
+    program_path = Path(args.out) / f"{report['graph']}.py"
+    report_path = Path(args.report) if args.report else None
+    if not args.overwrite:
+        for target in filter(None, (program_path, report_path)):
+            if target.exists():
+                raise FileExistsError(f"{target}: already exists (use --overwrite to replace it)")
+    write_atomic(program_path, result.program.encode("utf-8"), overwrite=True)
+    report = dict(report, program=str(program_path))
+    if report_path:
+        write_atomic(report_path, json.dumps(report, indent=2, sort_keys=True).encode("utf-8"), overwrite=True)
     unsupported = ", ".join(f"{k}×{v}" for k, v in report["unsupported"].items()) or "none"
     print(f"{report['graph']}: {report['nodes_translated']}/{report['nodes_total']} nodes translated, "
           f"{report['nodes_passthrough']} pass-through, {report['nodes_pruned']} pruned, "

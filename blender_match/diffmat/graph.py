@@ -15,13 +15,13 @@ from __future__ import annotations
 
 import fnmatch
 import re
-from collections import deque
 
 import torch
 from torch import nn
 
 from .errors import DiffMatError
-from .nodes.module import EvalContext, Node
+from .nodes.module import EvalContext, Node, ParameterSet
+from .toposort import topological_order
 
 USAGES = ("basecolor", "normal", "roughness", "metallic", "height", "ambientocclusion")
 _NAME = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
@@ -97,23 +97,9 @@ class MaterialGraph(nn.Module):
             if n not in needed:
                 needed.add(n)
                 stack.extend(src for src, _ in filter(None, self.links[n]))
-        indegree = {n: 0 for n in needed}
-        consumers: dict[str, list[str]] = {n: [] for n in needed}
-        for n in needed:
-            for src, _ in filter(None, self.links[n]):
-                indegree[n] += 1
-                consumers[src].append(n)
-        queue = deque(n for n in self.nodes if n in needed and indegree[n] == 0)
-        out = []
-        while queue:
-            n = queue.popleft()
-            out.append(n)
-            for c in consumers[n]:
-                indegree[c] -= 1
-                if indegree[c] == 0:
-                    queue.append(c)
-        if len(out) != len(needed):
-            stuck = sorted(n for n in needed if indegree[n] > 0)
+        edges = {n: [src for src, _ in filter(None, self.links[n])] for n in self.nodes if n in needed}
+        out, stuck = topological_order(edges)
+        if stuck:
             raise DiffMatError(f"graph {self.name}: cycle through nodes {stuck[:5]}")
         return out
 
@@ -128,10 +114,18 @@ class MaterialGraph(nn.Module):
         return dead
 
     # ---- parameters -------------------------------------------------------------------------
+    def parameter_sets(self) -> dict[str, ParameterSet]:
+        """Every holder of parameters by name: the nodes (a subclass may add graph-level sets)."""
+        return dict(self.nodes.items())
+
+    def may_train(self, owner: str, param: str) -> bool:
+        """Whether ``owner.param`` may be optimised (a subclass may pin more, e.g. bound ones)."""
+        return self.parameter_sets()[owner].optimizable(param)
+
     def param_slots(self) -> list[tuple[str, str, int]]:
-        """(node, parameter, components) of every trainable parameter, in vector order."""
-        return [(n, p, t.numel()) for n, node in self.nodes.items()
-                for p, t in node.theta.items() if t.requires_grad]
+        """(owner, parameter, components) of every trainable parameter, in vector order."""
+        return [(n, p, t.numel()) for n, ps in self.parameter_sets().items()
+                for p, t in ps.theta.items() if t.requires_grad]
 
     def param_names(self) -> list[str]:
         """One name per vector component: "node.param" or "node.param[i]"."""
@@ -143,36 +137,38 @@ class MaterialGraph(nn.Module):
 
     def get_vector(self) -> torch.Tensor:
         """The trainable parameters as one normalised vector (a detached copy)."""
+        sets = self.parameter_sets()
         slots = self.param_slots()
         if not slots:
             return torch.zeros(0)
-        return torch.cat([self.nodes[n].theta[p].detach().reshape(-1) for n, p, _ in slots])
+        return torch.cat([sets[n].theta[p].detach().reshape(-1) for n, p, _ in slots])
 
     def set_vector(self, vector: torch.Tensor):
         """Write a normalised vector (as from ``get_vector``) back into the parameters."""
         if vector.numel() != self.num_params():
             raise DiffMatError(f"graph {self.name}: parameter vector has {vector.numel()} values, "
                                f"expected {self.num_params()}")
+        sets = self.parameter_sets()
         with torch.no_grad():
             i = 0
             for n, p, k in self.param_slots():
-                t = self.nodes[n].theta[p]
+                t = sets[n].theta[p]
                 t.copy_(vector[i:i + k].reshape(t.shape).to(t))
                 i += k
 
     def _select(self, pattern: str, trainable: bool):
         hits = 0
-        for n, node in self.nodes.items():
-            for p, t in node.theta.items():
+        for n, ps in self.parameter_sets().items():
+            for p, t in ps.theta.items():
                 if fnmatch.fnmatchcase(f"{n}.{p}", pattern) or fnmatch.fnmatchcase(n, pattern):
-                    t.requires_grad_(trainable and node.spec.param(p).optimizable)
+                    t.requires_grad_(trainable and self.may_train(n, p))
                     hits += 1
         if not hits:
             raise DiffMatError(f"graph {self.name}: no parameter matches {pattern!r}")
         self._cache.clear()
 
     def freeze(self, pattern: str = "*"):
-        """Stop optimising parameters whose "node.param" (or node name) matches ``pattern``."""
+        """Stop optimising parameters whose "owner.param" (or owner name) matches ``pattern``."""
         self._select(pattern, False)
 
     def unfreeze(self, pattern: str = "*"):

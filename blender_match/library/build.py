@@ -187,7 +187,7 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("names", nargs="*", help="sources to build (default: all)")
     parser.add_argument("--check", action="store_true", help="only check that the shipped files are up to date")
     args = parser.parse_args(argv)
-    from ..image_files import write_atomic
+    from ..safe_files import write_atomic
 
     names = args.names or source_names()
     failed = stale = 0

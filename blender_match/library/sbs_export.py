@@ -501,7 +501,7 @@ def _arrays(el, node, uids):
 
 def write_sbs(graph, path: Path, description: str = "", overwrite: bool = True) -> Path:
     """Write ``graph`` as an ``.sbs`` file at ``path`` (atomically)."""
-    from ..image_files import write_atomic
+    from ..safe_files import write_atomic
 
     path = Path(path)
     write_atomic(path, export_sbs(graph, description).encode("utf-8"), overwrite=overwrite)

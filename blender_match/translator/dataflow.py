@@ -6,8 +6,7 @@ the IR nodes that reach an output and sort them so that every node comes after i
 """
 from __future__ import annotations
 
-from collections import deque
-
+from ..diffmat.toposort import topological_order
 from .errors import TranslatorError
 from .ir import IRGraph
 
@@ -19,22 +18,8 @@ def toposort(edges: dict[str, list[str]], path, what: str) -> list[str]:
         for s in srcs:
             if s not in edges:
                 raise TranslatorError(path, f"{what}: node {n[:30]} is connected to missing node {s[:30]}")
-    indegree = {n: len(set(srcs)) for n, srcs in edges.items()}
-    consumers: dict[str, list[str]] = {n: [] for n in edges}
-    for n, srcs in edges.items():
-        for s in set(srcs):
-            consumers[s].append(n)
-    queue = deque(n for n in edges if indegree[n] == 0)
-    out = []
-    while queue:
-        n = queue.popleft()
-        out.append(n)
-        for c in consumers[n]:
-            indegree[c] -= 1
-            if indegree[c] == 0:
-                queue.append(c)
-    if len(out) != len(edges):
-        stuck = sorted(n for n in edges if indegree[n] > 0)
+    out, stuck = topological_order(edges)
+    if stuck:
         raise TranslatorError(path, f"{what}: cycle through nodes {', '.join(s[:20] for s in stuck[:5])}")
     return out
 

@@ -19,15 +19,14 @@ How exposed parameters live at runtime (the choice this module implements):
 """
 from __future__ import annotations
 
-import fnmatch
 import math
 
 import torch
-from torch import nn
 
 from ..diffmat.errors import DiffMatError
 from ..diffmat.functional import function_graph as fgraph
 from ..diffmat.graph import MaterialGraph
+from ..diffmat.nodes.module import ParameterSet
 
 MODES = ("exposed", "exposed_plus", "all")
 EXPOSED = "exposed"  # the pseudo node name of exposed parameters in param_slots / param_names
@@ -47,14 +46,12 @@ def fit_components(values: list, size: int | None, default=None) -> list:
     return values + fill[len(values):]
 
 
-class ExposedParameters(nn.Module):
-    """The graph-level (exposed) parameters: float ones normalised in ``theta``, others fixed."""
+class ExposedParameters(ParameterSet):
+    """The graph-level (exposed) parameters: float ones normalised in ``theta`` (ranged by the
+    widget's min/max, widened to hold the default), others fixed values by name."""
 
     def __init__(self):
-        super().__init__()
-        self.theta = nn.ParameterDict()
-        self.ranges: dict[str, tuple[float, float]] = {}
-        self.fixed: dict[str, object] = {}
+        super().__init__(EXPOSED)
         self.kinds: dict[str, str] = {}
 
     def add(self, name: str, default, *, kind: str = "float", min: float = 0.0, max: float = 1.0):
@@ -64,40 +61,17 @@ class ExposedParameters(nn.Module):
         if kind != "float":
             self.fixed[name] = default
             return
-        t = torch.as_tensor(default, dtype=torch.float32).reshape(-1).clone()
-        if not torch.isfinite(t).all():
-            raise DiffMatError(f"exposed parameter {name!r}: default {default!r} is not finite")
-        lo, hi = float(min), float(max)
-        if t.numel():
-            lo, hi = builtins_min(lo, float(t.min())), builtins_max(hi, float(t.max()))
-        if not hi > lo:
-            hi = lo + 1.0
-        self.ranges[name] = (lo, hi)
-        self.theta[name] = nn.Parameter((t - lo) / (hi - lo))
+        if not max > min:
+            max = min + 1.0
+        self._store(name, default, min, max, None, widen=True, trainable=True)
 
     def values(self, override: dict | None = None) -> dict:
-        out = dict(self.fixed)
-        for name, t in self.theta.items():
-            if override and name in override:
-                t = override[name]
-            lo, hi = self.ranges[name]
-            out[name] = lo + torch.clamp(t, 0.0, 1.0) * (hi - lo)
-        return out
+        return {**self.fixed, **super().values(override)}
 
     def set_values(self, **real_values):
-        with torch.no_grad():
-            for name, value in real_values.items():
-                if name in self.fixed:
-                    self.fixed[name] = value
-                    continue
-                if name not in self.theta:
-                    raise DiffMatError(f"no exposed parameter {name!r}")
-                lo, hi = self.ranges[name]
-                t = torch.as_tensor(value, dtype=self.theta[name].dtype).reshape(self.theta[name].shape)
-                self.theta[name].copy_(((t - lo) / (hi - lo)).clamp(0.0, 1.0))
-
-
-builtins_min, builtins_max = min, max
+        fixed = {k: v for k, v in real_values.items() if k in self.fixed}
+        self.fixed.update(fixed)
+        super().set_values(**{k: v for k, v in real_values.items() if k not in fixed})
 
 
 class SbsGraph(MaterialGraph):
@@ -146,13 +120,9 @@ class SbsGraph(MaterialGraph):
         if mode not in MODES:
             raise DiffMatError(f"graph {self.name}: unknown mode {mode!r}; expected one of {list(MODES)}")
         self.mode = mode
-        for n, node in self.nodes.items():
-            for p, t in node.theta.items():
-                free = (mode != "exposed" and node.spec.param(p).optimizable
-                        and p not in self.bindings.get(n, {}))
-                t.requires_grad_(free)
-        for t in self.exposed.theta.values():
-            t.requires_grad_(True)
+        for n, ps in self.parameter_sets().items():
+            for p, t in ps.theta.items():
+                t.requires_grad_(self.may_train(n, p) and (n == EXPOSED or mode != "exposed"))
         self._cache.clear()
 
     # ---- bound parameters ------------------------------------------------------------------
@@ -186,30 +156,11 @@ class SbsGraph(MaterialGraph):
         return super()._static(order, overrides)
 
     # ---- the parameter vector ----------------------------------------------------------------
-    def _tensor(self, n: str, p: str) -> torch.Tensor:
-        return self.exposed.theta[p] if n == EXPOSED else self.nodes[n].theta[p]
+    def parameter_sets(self):
+        return {**super().parameter_sets(), EXPOSED: self.exposed}
 
-    def param_slots(self):
-        slots = super().param_slots()
-        return slots + [(EXPOSED, p, t.numel()) for p, t in self.exposed.theta.items() if t.requires_grad]
-
-    def get_vector(self) -> torch.Tensor:
-        slots = self.param_slots()
-        if not slots:
-            return torch.zeros(0)
-        return torch.cat([self._tensor(n, p).detach().reshape(-1) for n, p, _ in slots])
-
-    def set_vector(self, vector: torch.Tensor):
-        if vector.numel() != self.num_params():
-            raise DiffMatError(f"graph {self.name}: parameter vector has {vector.numel()} values, "
-                               f"expected {self.num_params()}")
-        with torch.no_grad():
-            i = 0
-            for n, p, k in self.param_slots():
-                t = self._tensor(n, p)
-                t.copy_(vector[i:i + k].reshape(t.shape).to(t))
-                i += k
-        self._cache.clear()
+    def may_train(self, owner: str, param: str) -> bool:
+        return super().may_train(owner, param) and param not in self.bindings.get(owner, {})
 
     def _split(self, theta):
         out = super()._split(theta)
@@ -222,22 +173,6 @@ class SbsGraph(MaterialGraph):
             return super().forward(size, seed, theta, cache)
         finally:
             self._batch = None
-
-    def _select(self, pattern: str, trainable: bool):
-        hits = 0
-        for p, t in self.exposed.theta.items():
-            if fnmatch.fnmatchcase(f"{EXPOSED}.{p}", pattern) or fnmatch.fnmatchcase(EXPOSED, pattern):
-                t.requires_grad_(trainable)
-                hits += 1
-        for n, node in self.nodes.items():
-            for p, t in node.theta.items():
-                if fnmatch.fnmatchcase(f"{n}.{p}", pattern) or fnmatch.fnmatchcase(n, pattern):
-                    bound = p in self.bindings.get(n, {})
-                    t.requires_grad_(trainable and node.spec.param(p).optimizable and not bound)
-                    hits += 1
-        if not hits:
-            raise DiffMatError(f"graph {self.name}: no parameter matches {pattern!r}")
-        self._cache.clear()
 
 
 def _fit_tensor(value: torch.Tensor, k: int, where: str) -> torch.Tensor:

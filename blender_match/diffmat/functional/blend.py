@@ -71,8 +71,10 @@ def _target(mode: int, fg: torch.Tensor, bg: torch.Tensor) -> torch.Tensor:
     if mode == 9:
         # where(bg < 0.5, lo, hi) as lo + [bg >= 0.5] (hi - lo): an arithmetic mask is much cheaper
         # than ``where`` on CPU, forward and backward
-        lo = 2 * fg * bg
-        return torch.addcmul(lo, _step(bg - 0.5), 1 - 2 * (1 - fg) * (1 - bg) - lo)
+        # hi - lo = 1 - 2 (1 - F)(1 - B) - 2 F B = 2 (F + B) - 4 F B - 1, sharing F B
+        fb = fg * bg
+        diff = torch.addcmul((fg + bg) * 2.0 - 1.0, fb, fb.new_full((), -4.0))
+        return torch.addcmul(fb * 2.0, _step(bg - 0.5), diff)
     if mode == 10:
         return 1 - (1 - fg) * (1 - bg)
     if mode == 11:

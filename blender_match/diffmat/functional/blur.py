@@ -14,6 +14,7 @@ from __future__ import annotations
 import math
 
 import torch
+import torch.nn.functional as F
 
 from ..errors import DiffMatError
 from .common import check_image, fft_filter, param2d
@@ -129,7 +130,9 @@ def sharpen(input1: torch.Tensor, *, intensity=1.0) -> torch.Tensor:
         # integer is a roll) and much cheaper than a transform
         s = int(step)
         x = input1
-        neigh = (torch.roll(x, s, -1) + torch.roll(x, -s, -1)) + (torch.roll(x, s, -2) + torch.roll(x, -s, -2))
+        # one circular pad, then the four neighbours as strided views of it (no roll copies)
+        p = F.pad(x, (s, s, s, s), mode="circular")
+        neigh = (p[..., s:s + h, :w] + p[..., s:s + h, 2 * s:]) + (p[..., :h, s:s + w] + p[..., 2 * s:, s:s + w])
         lap = torch.addcmul(x, neigh, x.new_full((), -0.25))      # x - mean of the four neighbours
         return torch.addcmul(x, lap, k[:, :, None, None]).clamp(0.0, 1.0)
     # phase of a shift by w/256 pixels, per frequency bin, on the rfft2 grid

@@ -48,7 +48,8 @@ def _normalize(v: torch.Tensor) -> torch.Tensor:
 
 
 def _encode(v: torch.Tensor) -> torch.Tensor:
-    rgb = (_normalize(v) * 0.5 + 0.5).clamp(0.0, 1.0)
+    half_inv = torch.rsqrt((v * v).sum(dim=1, keepdim=True) + 1e-12) * 0.5     # 1 / (2 |v|)
+    rgb = torch.addcmul(v.new_full((), 0.5), v, half_inv).clamp(0.0, 1.0)
     return torch.cat([rgb, torch.ones_like(rgb[:, :1])], dim=1)
 
 
@@ -69,6 +70,11 @@ def normal_combine(input: torch.Tensor, input_1: torch.Tensor, *, blend_quality:
     ``input_1`` leaves ``input`` unchanged (and vice versa)."""
     if blend_quality not in (0, 1):
         raise DiffMatError(f"normal_combine.blend_quality: unknown value {blend_quality!r}; expected 0 or 1")
+    if blend_quality == 0 and input.shape[1] == COLOR and input_1.shape[1] == COLOR:
+        # whiteout on the encoded maps directly: xy = (2 a - 1) + (2 b - 1), z = a_z b_z (z >= 0)
+        xy = (input[:, :2] + input_1[:, :2]) * 2.0 - 2.0
+        z = (input[:, 2:3] * 2.0 - 1.0).clamp_min(0.0) * (input_1[:, 2:3] * 2.0 - 1.0).clamp_min(0.0)
+        return _encode(torch.cat([xy, z], dim=1))
     a, b = _decode(input), _decode(input_1)
     if blend_quality == 0:
         v = torch.cat([a[:, :2] + b[:, :2], a[:, 2:] * b[:, 2:]], dim=1)

@@ -17,7 +17,23 @@ from .pattern_shapes import TAU, aa_coverage, check_int, lattice_random, ref_ten
 __all__ = ["cells_soft", "cells_distance", "cells_cracks", "cells_flat", "alveolus_pattern"]
 
 
-_CHUNK_ELEMS = 1 << 21  # candidate values evaluated together (bounds the temporaries; few large ops)
+_CHUNK_ELEMS = 1 << 20  # candidate values evaluated together (bounds the temporaries, stays in cache)
+_GRID_CACHE: dict = {}
+
+
+def _cell_axis(size: int, n: int, device, dtype):
+    """Per pixel of an axis: its cell (long, (size,)) and its offset from that cell's centre, in
+    cells ((size,)); cached per (size, n, device, dtype)."""
+    key = (size, n, str(device), dtype)
+    hit = _GRID_CACHE.get(key)
+    if hit is None:
+        c = (torch.arange(size, dtype=torch.float64) + 0.5) / size * n
+        ci = torch.floor(c)
+        hit = (ci.long().to(device), (c - ci - 0.5).to(device=device, dtype=dtype))
+        if len(_GRID_CACHE) > 64:
+            _GRID_CACHE.clear()
+        _GRID_CACHE[key] = hit
+    return hit
 
 
 def worley(size: int, scale: int, seed: int, disorder=0.0, device=None, dtype=torch.float32, values: bool = True,
@@ -26,10 +42,11 @@ def worley(size: int, scale: int, seed: int, disorder=0.0, device=None, dtype=to
     nearest cell, random value of the cell across the nearest border), each (B, 1, H, W); the
     two values are None when ``values`` is false, the border and values too when ``border`` is.
 
-    Candidates are the 3 x 3 cells around the pixel's cell. A pixel's cell column depends on its
-    column only and its cell row on its row only, so the candidates' points are two-level gathers
-    from the (n, n) tables; the image is evaluated in blocks of rows with the nine candidates
-    stacked on one axis."""
+    Candidates are the 3 x 3 cells around the pixel's cell, on a last, contiguous axis of 9. The
+    squared distance splits into an x part that depends on (cell row, pixel column, candidate) and a
+    y part on (cell column, pixel row, candidate): two small tables, so a block of pixel rows is two
+    row-copy gathers and one add. Everything that depends on a pair of candidates only (their
+    separation, their random values) is a per-cell table read once per pixel."""
     ref = ref_tensor(device, dtype)
     n = scale
     rnd = lattice_random(seed, 3, n * n, device, dtype)
@@ -39,65 +56,58 @@ def worley(size: int, scale: int, seed: int, disorder=0.0, device=None, dtype=to
     rad = 0.45 * torch.sqrt(rnd[1])
     ox, oy = rad * torch.cos(ang), rad * torch.sin(ang)  # (B, n*n)
     b = ox.shape[0]
-    c = (torch.arange(size, device=device, dtype=dtype) + 0.5) / size * n      # pixel centres, cells
-    ci = torch.floor(c)
-    f = c - ci - 0.5                                                          # (size,) from the centre
-    ci = ci.long()
-    near = torch.stack([torch.remainder(ci + d, n) for d in (-1, 0, 1)])     # (3, size)
-    cols = near.reshape(-1)                                                   # (3 * size,)
-    shift = torch.tensor([-1.0, 0.0, 1.0], device=device, dtype=dtype)
-    # candidate k = 3 (dj + 1) + (di + 1); x offsets relative to the pixel: table + di - fx
-    fx = (shift[:, None] - f[None, :]).reshape(1, 1, 3, size)                # (1, 1, 3(di), W)
-    tx = ox.view(b, n, n)
-    ty = oy.view(b, n, n)
-    f1s, borders, i1s, i2s = [], [], [], []
-    rows_all = torch.arange(size, device=device)
-    chunk = max(16, _CHUNK_ELEMS // (9 * size * b))
-    chunk = 1 << (chunk.bit_length() - 1)
+    ci, f = _cell_axis(size, n, device, dtype)                                # (size,) each
+    ar = torch.arange(n, device=device)
+    # candidate k = 3 (dj + 1) + (di + 1): neighbour cell (cy + dj, cx + di)
+    dj = torch.tensor([-1, -1, -1, 0, 0, 0, 1, 1, 1], device=device)
+    di = torch.tensor([-1, 0, 1, -1, 0, 1, -1, 0, 1], device=device)
+    ncell = (torch.remainder(ar[:, None, None] + dj, n) * n
+             + torch.remainder(ar[None, :, None] + di, n))                    # (n cy, n cx, 9)
+    px = ox[:, ncell] + di.to(dtype)                                          # (B, n, n, 9) from own centre
+    py = oy[:, ncell] + dj.to(dtype)
+    # x part: (B, cy, pixel column, 9); y part: (B, pixel row, cx, 9)
+    ax = px[:, :, ci] - f[None, None, :, None]
+    ax = ax * ax
+    ay = py.index_select(1, ci) - f[None, :, None, None]
+    ay = ay * ay
+    if border:
+        sx = px[..., :, None] - px[..., None, :]
+        sy = py[..., :, None] - py[..., None, :]
+        inv = 0.5 * torch.rsqrt(torch.addcmul(sx * sx, sy, sy) + 1e-12)      # (B, n, n, 9, 9)
+        inv = inv.reshape(b, n * n * 9, 9)
+    f1s, borders, k1s, k2s = [], [], [], []
+    chunk = max(1, _CHUNK_ELEMS // (9 * size * b))
     for r0 in range(0, size, chunk):
-        r = rows_all[r0:r0 + chunk]
-        m = r.shape[0]
-        gxs, gys = [], []
-        for j in range(3):
-            rowi = near[j, r]
-            gx = tx.index_select(1, rowi).index_select(2, cols).view(b, m, 3, size)
-            gy = ty.index_select(1, rowi).index_select(2, cols).view(b, m, 3, size)
-            gxs.append((gx + fx).transpose(1, 2))                            # (B, 3, m, W)
-            gys.append((gy + (shift[j] - f[r]).view(1, m, 1, 1)).transpose(1, 2))
-        GX = torch.stack(gxs, dim=1).reshape(b, 9, m, size)  # p - x per candidate
-        GY = torch.stack(gys, dim=1).reshape(b, 9, m, size)
-        D2 = torch.addcmul(GX * GX, GY, GY)
+        rows = ci[r0:r0 + chunk]
+        m = rows.shape[0]
+        d2 = ax.index_select(1, rows) + ay[:, r0:r0 + m].index_select(2, ci)  # (B, m, W, 9)
         if not border:
-            f1s.append(D2.amin(dim=1, keepdim=True))
+            f1s.append(d2.amin(dim=-1))
             continue
-        f1sq, i1 = D2.min(dim=1, keepdim=True)
+        f1sq, i1 = d2.min(dim=-1, keepdim=True)
+        cell = (rows[:, None] * n + ci[None, :]).view(1, m, size, 1)
+        k1 = cell * 9 + i1                                                    # (B, m, W, 1)
         # exact distance to the cell's border: the nearest bisector between p1 and any other point
-        dpx = GX - GX.gather(1, i1)
-        dpy = GY - GY.gather(1, i1)
-        sep2 = torch.addcmul(dpx * dpx, dpy, dpy)
-        bis = (D2 - f1sq) * torch.rsqrt(sep2 + 1e-12) * 0.5
-        bis = bis.scatter(1, i1, torch.full_like(f1sq, 1e3))
-        bd, i2 = bis.min(dim=1, keepdim=True)
-        f1s.append(f1sq)
-        borders.append(bd)
-        i1s.append(i1)
-        i2s.append(i2)
-    f1 = torch.sqrt(torch.cat(f1s, dim=2) + 1e-12)
+        w = inv.gather(1, k1.reshape(b, -1, 1).expand(-1, -1, 9)).view(b, m, size, 9)
+        bis = (d2 - f1sq) * w
+        bis = bis.scatter(-1, i1, 1e3)
+        bd, i2 = bis.min(dim=-1, keepdim=True)
+        f1s.append(f1sq[..., 0])
+        borders.append(bd[..., 0])
+        k1s.append(k1[..., 0])
+        k2s.append((cell * 9 + i2)[..., 0])
+    f1 = torch.sqrt(torch.cat(f1s, dim=1) + 1e-12)[:, None]
     if not border:
         return f1, None, None, None
-    bd = torch.cat(borders, dim=2)
+    bd = torch.cat(borders, dim=1)[:, None]
     if not values:
         return f1, bd, None, None
+    vt = rnd[2][ncell].reshape(-1)                                            # (n * n * 9,)
 
-    def lookup(idx):
-        k = torch.cat(idx, dim=2)                                   # (B, 1, H, W)
-        dj = k // 3
-        di = k - 3 * dj
-        cy = torch.remainder(ci.view(1, 1, size, 1) + dj - 1, n)
-        cx = torch.remainder(ci.view(1, 1, 1, size) + di - 1, n)
-        return rnd[2][(cy * n + cx)]
+    def lookup(ks):
+        return vt[torch.cat(ks, dim=1)][:, None]
 
-    return f1, bd, lookup(i1s), lookup(i2s)
+    return f1, bd, lookup(k1s), lookup(k2s)
 
 
 def cells_soft(*, scale: int = 8, disorder=0.0, size: int = 512, seed: int = 0, device=None,

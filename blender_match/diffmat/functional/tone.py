@@ -164,29 +164,37 @@ def _rgb_to_hsl(rgb: torch.Tensor):
     mx = rgb.amax(dim=1, keepdim=True)
     mn = rgb.amin(dim=1, keepdim=True)
     d = mx - mn
-    light = (mx + mn) * 0.5
+    s2 = mx + mn                                   # 2 l
+    light = s2 * 0.5
     colour = _step(d - 1e-7)                       # 0 on grays (d < 1e-7)
-    dd = d + (1.0 - colour)                        # d, or 1 on grays (no division by 0)
-    sat = (d / (1 - (2 * light - 1).abs()).clamp_min(1e-7)).clamp(0.0, 1.0) * colour
+    inv = 1.0 / (d + (1.0 - colour))               # 1 / d, or 1 on grays (no division by 0)
+    # saturation d / (1 - |2 l - 1|)
+    sat = (d / (1.0 - (s2 - 1.0).abs()).clamp_min(1e-7)).clamp(0.0, 1.0) * colour
     # hue sector by the largest channel (r first, then g, then b, as a chain of where)
-    is_r = _step(r - mx)
-    is_g = (1.0 - is_r) * _step(g - mx)
-    is_b = 1.0 - is_r - is_g
-    hr = (g - b) / dd
+    with torch.no_grad():
+        is_r = _step(r - mx)
+        is_g = (1.0 - is_r) * _step(g - mx)
+        is_b = 1.0 - is_r - is_g
+    hr = (g - b) * inv
     hr = hr + 6.0 * (1.0 - _step(hr))              # remainder(hr, 6) for hr in [-1, 1]
-    hue = (hr * is_r + ((b - r) / dd + 2) * is_g + ((r - g) / dd + 4) * is_b) * (colour / 6)
-    return hue, sat, light
+    # sectors: hr, (b - r)/d + 2, (r - g)/d + 4; the offsets 2 and 4 folded into one mask term
+    hue = hr * is_r + ((b - r) * is_g + (r - g) * is_b) * inv + (2.0 * is_g + 4.0 * is_b)
+    return hue * (colour * (1.0 / 6.0)), sat, light
+
+
+_HSL_OFFSETS: dict = {}
 
 
 def _hsl_to_rgb(hue, sat, light):
     a = sat * torch.minimum(light, 1 - light)
-    chans = []
-    for n in (0.0, 8.0, 4.0):
-        k = n + hue * 12
-        k = k - 12.0 * torch.floor(k.detach() / 12.0)     # remainder(k, 12) without torch.remainder
-        m = torch.minimum(k - 3, 9 - k).clamp(-1.0, 1.0)
-        chans.append(light - a * m)
-    return torch.cat(chans, dim=1)
+    key = (hue.device, hue.dtype)
+    off = _HSL_OFFSETS.get(key)
+    if off is None:
+        off = _HSL_OFFSETS[key] = torch.tensor([0.0, 8.0, 4.0], device=hue.device, dtype=hue.dtype).reshape(1, 3, 1, 1)
+    k = torch.addcmul(off, hue, hue.new_full((), 12.0))   # (N, 3, H, W): the three channels at once
+    k = k - 12.0 * torch.floor(k.detach() * (1.0 / 12.0))  # remainder(k, 12) without torch.remainder
+    m = torch.minimum(k - 3, 9 - k).clamp(-1.0, 1.0)
+    return torch.addcmul(light, a, m, value=-1.0)
 
 
 def hsl(input1: torch.Tensor, *, hue=0.5, saturation=0.5, luminosity=0.5) -> torch.Tensor:

@@ -1,9 +1,6 @@
 """Node: the parameter-holding module around a NodeSpec's functional op (like torch.nn around
-torch.nn.functional).
-
-Continuous parameters live in ``theta`` normalised to [0, 1] between the parameter's min and
-max; ``values()`` maps them to real values, clamping first so that an optimiser can never push a
-node outside its domain (the MATch paper, section 5.1). Discrete parameters are fixed.
+torch.nn.functional), and ParameterSet, the normalised parameter storage it shares with
+graph-level parameters.
 """
 from __future__ import annotations
 
@@ -50,54 +47,46 @@ def _check_discrete(spec: NodeSpec, p: Param, value):
     return value
 
 
-class Node(nn.Module):
-    """One node of a material graph.
+class ParameterSet(nn.Module):
+    """Continuous parameters stored normalised in [0, 1] between per-parameter ranges, plus fixed
+    (discrete) values. ``values()`` maps the stored values to real ones, clamping first so that an
+    optimiser can never push a parameter outside its domain (the MATch paper, section 5.1).
 
-    ``params`` overrides the spec's defaults by name. A continuous value outside the parameter's
-    range is an error unless ``widen_ranges`` is set (the translator sets it for real files, whose
-    values may lie outside a slider's range); then the range grows to hold it. ``seed`` is the
-    node's random seed, added to the graph's.
+    Shared by ``Node`` and by graph-level parameter sets (a translated graph's exposed parameters);
+    ``MaterialGraph`` builds its parameter vector from every set it holds.
     """
 
-    def __init__(self, spec: NodeSpec | str, params: dict | None = None, *, seed: int = 0,
-                 widen_ranges: bool = False):
+    def __init__(self, label: str):
         super().__init__()
-        self.spec = get_spec(spec) if isinstance(spec, str) else spec
-        params = dict(params or {})
-        unknown = set(params) - set(self.spec.param_index)
-        if unknown:
-            raise DiffMatError(f"{self.spec.name}: unknown parameter(s) {sorted(unknown)}")
-        self.seed = int(seed)
+        self.label = label
         self.theta = nn.ParameterDict()
         self.ranges: dict[str, tuple[float, float]] = {}
         self.fixed: dict[str, object] = {}
-        for p in self.spec.params:
-            value = params.get(p.name, p.default)
-            if p.continuous:
-                self._init_continuous(p, value, widen_ranges)
-            else:
-                self.fixed[p.name] = _check_discrete(self.spec, p, value)
 
-    def _init_continuous(self, p: Param, value, widen: bool):
-        where = f"{self.spec.name}.{p.name}"
+    def optimizable(self, name: str) -> bool:
+        """Whether continuous parameter ``name`` may be optimised at all."""
+        return True
+
+    def _store(self, name: str, value, lo: float, hi: float, size: int | None, widen: bool, trainable: bool):
+        where = f"{self.label}.{name}"
         try:
             t = torch.as_tensor(value, dtype=torch.float32).reshape(-1).clone()
         except (TypeError, ValueError):
             raise DiffMatError(f"{where}: expected a number or a list of numbers, got {value!r}") from None
-        if p.size is not None and t.numel() == 1 and p.size > 1:
-            t = t.expand(p.size).clone()
-        if p.size is not None and t.numel() != p.size:
-            raise DiffMatError(f"{where}: expected {p.size} component(s), got {t.numel()}")
+        if size is not None and t.numel() == 1 and size > 1:
+            t = t.expand(size).clone()
+        if size is not None and t.numel() != size:
+            raise DiffMatError(f"{where}: expected {size} component(s), got {t.numel()}")
         if not torch.isfinite(t).all():
             raise DiffMatError(f"{where}: value {value!r} is not finite")
-        lo, hi = float(p.min), float(p.max)
+        lo, hi = float(lo), float(hi)
         if t.numel() and (t.min() < lo or t.max() > hi):
             if not widen:
                 raise DiffMatError(f"{where}: value {value!r} is outside [{lo:g}, {hi:g}]")
             lo, hi = min(lo, float(t.min())), max(hi, float(t.max()))
-        self.ranges[p.name] = (lo, hi)
+        self.ranges[name] = (lo, hi)
         norm = (t - lo) / (hi - lo) if hi > lo else torch.zeros_like(t)
-        self.theta[p.name] = nn.Parameter(norm, requires_grad=p.optimizable)
+        self.theta[name] = nn.Parameter(norm, requires_grad=trainable)
 
     def values(self, override: dict[str, torch.Tensor] | None = None) -> dict[str, torch.Tensor]:
         """Real values of the continuous parameters: (k,) tensors, or (B, k) where ``override``
@@ -115,12 +104,42 @@ class Node(nn.Module):
         with torch.no_grad():
             for name, value in real_values.items():
                 if name not in self.theta:
-                    raise DiffMatError(f"{self.spec.name}: no continuous parameter {name!r}")
+                    raise DiffMatError(f"{self.label}: no continuous parameter {name!r}")
                 lo, hi = self.ranges[name]
                 t = torch.as_tensor(value, dtype=self.theta[name].dtype).reshape(self.theta[name].shape)
                 if (t < lo).any() or (t > hi).any():
-                    raise DiffMatError(f"{self.spec.name}.{name}: value {value!r} is outside [{lo:g}, {hi:g}]")
+                    raise DiffMatError(f"{self.label}.{name}: value {value!r} is outside [{lo:g}, {hi:g}]")
                 self.theta[name].copy_((t - lo) / (hi - lo) if hi > lo else torch.zeros_like(t))
+
+
+class Node(ParameterSet):
+    """One node of a material graph.
+
+    ``params`` overrides the spec's defaults by name. A continuous value outside the parameter's
+    range is an error unless ``widen_ranges`` is set (the translator sets it for real files, whose
+    values may lie outside a slider's range); then the range grows to hold it. ``seed`` is the
+    node's random seed, added to the graph's.
+    """
+
+    def __init__(self, spec: NodeSpec | str, params: dict | None = None, *, seed: int = 0,
+                 widen_ranges: bool = False):
+        spec = get_spec(spec) if isinstance(spec, str) else spec
+        super().__init__(spec.name)
+        self.spec = spec
+        params = dict(params or {})
+        unknown = set(params) - set(spec.param_index)
+        if unknown:
+            raise DiffMatError(f"{spec.name}: unknown parameter(s) {sorted(unknown)}")
+        self.seed = int(seed)
+        for p in spec.params:
+            value = params.get(p.name, p.default)
+            if p.continuous:
+                self._store(p.name, value, p.min, p.max, p.size, widen_ranges, p.optimizable)
+            else:
+                self.fixed[p.name] = _check_discrete(spec, p, value)
+
+    def optimizable(self, name: str) -> bool:
+        return self.spec.param(name).optimizable
 
     def forward(self, *images, ctx: EvalContext | None = None, override=None):
         ctx = ctx or EvalContext()

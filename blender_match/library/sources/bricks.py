@@ -24,14 +24,10 @@ Exposed parameters
 """
 from __future__ import annotations
 
-from blender_match.library.expressions import const, get, gray4, lerp, vector
+from blender_match.library.authoring import ADD_SUB, COPY, MAX, MULTIPLY, OVERLAY, SOFT_LIGHT, SUBTRACT, constant_map, gradient_keys
+from blender_match.library.expressions import get, lerp, vector
 from blender_match.translator.runtime import SbsGraph
 
-COPY, ADD, SUBTRACT, MULTIPLY, ADD_SUB, MAX, MIN, OVERLAY, SCREEN, SOFT_LIGHT = 0, 1, 2, 3, 4, 5, 6, 9, 10, 11
-
-
-def _gradient(stops):
-    return {"positions": [p for p, _ in stops], "colors": [c for _, rgb in stops for c in (*rgb, 1.0)]}
 
 
 def build() -> SbsGraph:
@@ -80,17 +76,17 @@ def build() -> SbsGraph:
     # ---- colour ------------------------------------------------------------------------------
     g.add("brick_base", "uniform", outputcolor=(0.50, 0.23, 0.15, 1.0))
     g.bind("brick_base", "outputcolor", vector(get("brick_color", 3), 1.0).graph())
-    g.add("brick_tones", "gradient", {"input1": "brick_id"}, **_gradient([
+    g.add("brick_tones", "gradient", {"input1": "brick_id"}, **gradient_keys([
         (0.0, (0.22, 0.19, 0.20)), (0.2, (0.40, 0.34, 0.36)), (0.45, (0.50, 0.47, 0.45)),
         (0.75, (0.60, 0.52, 0.42)), (1.0, (0.70, 0.58, 0.44))]))
     g.add("brick_varied", "blend", {"source": "brick_tones", "destination": "brick_base"},
           blendingmode=SOFT_LIGHT, opacitymult=0.6)
     g.bind("brick_varied", "opacitymult", get("brick_variation").graph())
-    g.add("cloud_tones", "gradient", {"input1": "clouds"}, **_gradient([
+    g.add("cloud_tones", "gradient", {"input1": "clouds"}, **gradient_keys([
         (0.0, (0.40, 0.40, 0.42)), (1.0, (0.60, 0.56, 0.50))]))
     g.add("brick_clouded", "blend", {"source": "cloud_tones", "destination": "brick_varied"},
           blendingmode=SOFT_LIGHT, opacitymult=0.7)
-    g.add("speckle_tones", "gradient", {"input1": "sand"}, **_gradient([
+    g.add("speckle_tones", "gradient", {"input1": "sand"}, **gradient_keys([
         (0.0, (0.30, 0.28, 0.27)), (0.5, (0.5, 0.5, 0.5)), (1.0, (0.62, 0.58, 0.52))]))
     g.add("brick_speckled", "blend", {"source": "speckle_tones", "destination": "brick_clouded"},
           blendingmode=OVERLAY, opacitymult=0.35)
@@ -104,7 +100,7 @@ def build() -> SbsGraph:
     g.add("brick_mask", "histogram_scan", {"input_1": "brick_soft"}, position=0.85, contrast=0.6)
     g.add("wall", "blend", {"source": "brick_speckled", "destination": "mortar_speckled",
                             "opacity": "brick_mask"}, blendingmode=COPY, opacitymult=1.0)
-    g.add("ao_color", "gradient", {"input1": "ao"}, **_gradient([(0.0, (0.15, 0.15, 0.15)), (1.0, (1.0, 1.0, 1.0))]))
+    g.add("ao_color", "gradient", {"input1": "ao"}, **gradient_keys([(0.0, (0.15, 0.15, 0.15)), (1.0, (1.0, 1.0, 1.0))]))
     g.add("basecolor", "blend", {"source": "ao_color", "destination": "wall"},
           blendingmode=MULTIPLY, opacitymult=0.45)
 
@@ -114,8 +110,7 @@ def build() -> SbsGraph:
     g.add("rough_mortar", "uniform", colorswitch=False, outputcolor=(0.95, 0.95, 0.95, 1.0))
     g.add("roughness", "blend", {"source": "rough_brick", "destination": "rough_mortar", "opacity": "brick_mask"},
           blendingmode=COPY, opacitymult=1.0)
-    g.add("metallic", "uniform", colorswitch=False, outputcolor=(0.0, 0.0, 0.0, 1.0))
-    g.bind("metallic", "outputcolor", const((0.0, 0.0, 0.0, 1.0)).graph())
+    constant_map(g, "metallic", 0.0)
 
     for usage in ("basecolor", "normal", "roughness", "metallic", "height"):
         g.set_output(usage, usage)

@@ -23,15 +23,11 @@ Exposed parameters
 """
 from __future__ import annotations
 
-from blender_match.library.expressions import const, get, lerp, vector
+from blender_match.library.authoring import ADD, ADD_SUB, COPY, MAX, MULTIPLY, OVERLAY, SOFT_LIGHT, constant_map, gradient_keys
+from blender_match.library.expressions import get, lerp, vector
 from blender_match.translator.runtime import SbsGraph
 
-COPY, ADD, SUBTRACT, MULTIPLY, ADD_SUB, MAX, MIN, OVERLAY, SCREEN, SOFT_LIGHT = 0, 1, 2, 3, 4, 5, 6, 9, 10, 11
 SQUARE, BRICK = 1, 8
-
-
-def _gradient(stops):
-    return {"positions": [p for p, _ in stops], "colors": [c for _, rgb in stops for c in (*rgb, 1.0)]}
 
 
 def build() -> SbsGraph:
@@ -75,12 +71,12 @@ def build() -> SbsGraph:
     # ---- colour ------------------------------------------------------------------------------
     g.add("glaze_base", "uniform", outputcolor=(0.78, 0.80, 0.78, 1.0))
     g.bind("glaze_base", "outputcolor", vector(get("tile_color", 3), 1.0).graph())
-    g.add("tile_tones", "gradient", {"input1": "tile_id"}, **_gradient([
+    g.add("tile_tones", "gradient", {"input1": "tile_id"}, **gradient_keys([
         (0.0, (0.44, 0.44, 0.45)), (1.0, (0.57, 0.56, 0.54))]))
     g.add("glaze_varied", "blend", {"source": "tile_tones", "destination": "glaze_base"},
           blendingmode=SOFT_LIGHT, opacitymult=0.8)
     # glaze pools thicker (darker) along the bevels
-    g.add("bevel_tones", "gradient", {"input1": "tiles_round"}, **_gradient([
+    g.add("bevel_tones", "gradient", {"input1": "tiles_round"}, **gradient_keys([
         (0.0, (0.55, 0.55, 0.55)), (0.5, (0.72, 0.72, 0.74)), (1.0, (1.0, 1.0, 1.0))]))
     g.add("glaze_pooled", "blend", {"source": "bevel_tones", "destination": "glaze_varied"},
           blendingmode=MULTIPLY, opacitymult=0.4)
@@ -89,7 +85,7 @@ def build() -> SbsGraph:
     g.bind("grout_base", "outputcolor",
            vector(get("grout_brightness"), get("grout_brightness") * 0.97,
                   get("grout_brightness") * 0.9, 1.0).graph())
-    g.add("sand_tones", "gradient", {"input1": "sand"}, **_gradient([
+    g.add("sand_tones", "gradient", {"input1": "sand"}, **gradient_keys([
         (0.0, (0.34, 0.34, 0.34)), (1.0, (0.62, 0.61, 0.58))]))
     g.add("grout_speckled", "blend", {"source": "sand_tones", "destination": "grout_base"},
           blendingmode=OVERLAY, opacitymult=0.6)
@@ -110,7 +106,7 @@ def build() -> SbsGraph:
     g.bind("film", "position", lerp(0.0, 0.6, get("dirt")).graph())
     g.add("filmy", "blend", {"source": "grime_color", "destination": "grimy", "opacity": "film"},
           blendingmode=MULTIPLY, opacitymult=0.07)
-    g.add("ao_color", "gradient", {"input1": "ao"}, **_gradient([(0.0, (0.25, 0.25, 0.25)), (1.0, (1.0, 1.0, 1.0))]))
+    g.add("ao_color", "gradient", {"input1": "ao"}, **gradient_keys([(0.0, (0.25, 0.25, 0.25)), (1.0, (1.0, 1.0, 1.0))]))
     g.add("basecolor", "blend", {"source": "ao_color", "destination": "filmy"},
           blendingmode=MULTIPLY, opacitymult=0.5)
 
@@ -124,8 +120,7 @@ def build() -> SbsGraph:
           blendingmode=COPY, opacitymult=1.0)
     g.add("roughness", "blend", {"source": "grime_level", "destination": "rough_surface"},
           blendingmode=MAX, opacitymult=0.9)
-    g.add("metallic", "uniform", colorswitch=False, outputcolor=(0.0, 0.0, 0.0, 1.0))
-    g.bind("metallic", "outputcolor", const((0.0, 0.0, 0.0, 1.0)).graph())
+    constant_map(g, "metallic", 0.0)
 
     for usage in ("basecolor", "normal", "roughness", "metallic", "height"):
         g.set_output(usage, usage)

@@ -23,14 +23,10 @@ Exposed parameters
 """
 from __future__ import annotations
 
-from blender_match.library.expressions import const, get, lerp, vector
+from blender_match.library.authoring import ADD, ADD_SUB, MULTIPLY, OVERLAY, SOFT_LIGHT, SUBTRACT, constant_map, gradient_keys
+from blender_match.library.expressions import get, lerp, vector
 from blender_match.translator.runtime import SbsGraph
 
-COPY, ADD, SUBTRACT, MULTIPLY, ADD_SUB, MAX, MIN, OVERLAY, SCREEN, SOFT_LIGHT = 0, 1, 2, 3, 4, 5, 6, 9, 10, 11
-
-
-def _gradient(stops):
-    return {"positions": [p for p, _ in stops], "colors": [c for _, rgb in stops for c in (*rgb, 1.0)]}
 
 
 def build() -> SbsGraph:
@@ -77,11 +73,11 @@ def build() -> SbsGraph:
     # ---- colour ------------------------------------------------------------------------------
     g.add("dye", "uniform", outputcolor=(0.30, 0.15, 0.08, 1.0))
     g.bind("dye", "outputcolor", vector(get("leather_color", 3), 1.0).graph())
-    g.add("mottle", "gradient", {"input1": "fold_noise"}, **_gradient([
+    g.add("mottle", "gradient", {"input1": "fold_noise"}, **gradient_keys([
         (0.0, (0.40, 0.40, 0.40)), (1.0, (0.60, 0.57, 0.54))]))
     g.add("dye_mottled", "blend", {"source": "mottle", "destination": "dye"},
           blendingmode=SOFT_LIGHT, opacitymult=0.7)
-    g.add("valley_tones", "gradient", {"input1": "height"}, **_gradient([
+    g.add("valley_tones", "gradient", {"input1": "height"}, **gradient_keys([
         (0.0, (0.35, 0.33, 0.32)), (0.45, (0.78, 0.77, 0.76)), (1.0, (1.0, 1.0, 1.0))]))
     g.add("dye_pooled", "blend", {"source": "valley_tones", "destination": "dye_mottled"},
           blendingmode=MULTIPLY, opacitymult=0.8)
@@ -90,7 +86,7 @@ def build() -> SbsGraph:
     g.add("rub_color", "uniform", outputcolor=(0.62, 0.52, 0.44, 1.0))
     g.add("rubbed", "blend", {"source": "rub_color", "destination": "dye_pooled", "opacity": "tops"},
           blendingmode=OVERLAY, opacitymult=0.5)
-    g.add("ao_color", "gradient", {"input1": "ao"}, **_gradient([(0.0, (0.3, 0.3, 0.3)), (1.0, (1.0, 1.0, 1.0))]))
+    g.add("ao_color", "gradient", {"input1": "ao"}, **gradient_keys([(0.0, (0.3, 0.3, 0.3)), (1.0, (1.0, 1.0, 1.0))]))
     g.add("basecolor", "blend", {"source": "ao_color", "destination": "rubbed"},
           blendingmode=MULTIPLY, opacitymult=0.4)
 
@@ -102,8 +98,7 @@ def build() -> SbsGraph:
           blendingmode=SUBTRACT, opacitymult=0.12)
     g.add("roughness", "blend", {"source": "crease_soft", "destination": "rough_rubbed"},
           blendingmode=ADD, opacitymult=0.1)
-    g.add("metallic", "uniform", colorswitch=False, outputcolor=(0.0, 0.0, 0.0, 1.0))
-    g.bind("metallic", "outputcolor", const((0.0, 0.0, 0.0, 1.0)).graph())
+    constant_map(g, "metallic", 0.0)
 
     for usage in ("basecolor", "normal", "roughness", "metallic", "height"):
         g.set_output(usage, usage)

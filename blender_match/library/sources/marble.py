@@ -20,7 +20,8 @@ Exposed parameters
 """
 from __future__ import annotations
 
-from blender_match.library.expressions import clamp, const, get, lerp, vector
+from blender_match.library.authoring import constant_map
+from blender_match.library.expressions import get, lerp, vector
 from blender_match.translator.runtime import SbsGraph
 
 
@@ -96,8 +97,7 @@ def build() -> SbsGraph:
     g.set_output("roughness", "r_out")
 
     # ---- metallic -----------------------------------------------------------------------------------
-    g.add("metal", "uniform", outputcolor=[0.0, 0.0, 0.0, 1.0], colorswitch=False)
-    g.bind("metal", "outputcolor", const([0.0, 0.0, 0.0, 1.0]).graph())
+    constant_map(g, "metal", 0.0)
     g.set_output("metallic", "metal")
     return g
 

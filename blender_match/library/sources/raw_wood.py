@@ -24,15 +24,11 @@ Exposed parameters
 """
 from __future__ import annotations
 
+from blender_match.library.authoring import ADD, ADD_SUB, COPY, MULTIPLY, SOFT_LIGHT, SUBTRACT, constant_map, gradient_keys
 from blender_match.library.expressions import const, get, lerp, vector
 from blender_match.translator.runtime import SbsGraph
 
-COPY, ADD, SUBTRACT, MULTIPLY, ADD_SUB, MAX, MIN, OVERLAY, SCREEN, SOFT_LIGHT = 0, 1, 2, 3, 4, 5, 6, 9, 10, 11
 GAUSSIAN = 5
-
-
-def _gradient(stops):
-    return {"positions": [p for p, _ in stops], "colors": [c for _, rgb in stops for c in (*rgb, 1.0)]}
 
 
 def build() -> SbsGraph:
@@ -86,12 +82,12 @@ def build() -> SbsGraph:
     g.add("grain_color", "blend", {"source": "latewood", "destination": "earlywood", "opacity": "rings"},
           blendingmode=COPY, opacitymult=0.6)
     g.bind("grain_color", "opacitymult", get("ring_contrast").graph())
-    g.add("fibre_tone", "gradient", {"input1": "fibres_warp"}, **_gradient([
+    g.add("fibre_tone", "gradient", {"input1": "fibres_warp"}, **gradient_keys([
         (0.0, (0.44, 0.43, 0.42)), (1.0, (0.56, 0.55, 0.53))]))
     g.add("fibred", "blend", {"source": "fibre_tone", "destination": "grain_color"},
           blendingmode=SOFT_LIGHT, opacitymult=0.7)
     g.add("clouds", "clouds_1", seed=65, scale=3.0)
-    g.add("cloud_tone", "gradient", {"input1": "clouds"}, **_gradient([
+    g.add("cloud_tone", "gradient", {"input1": "clouds"}, **gradient_keys([
         (0.0, (0.42, 0.41, 0.40)), (1.0, (0.58, 0.56, 0.52))]))
     g.add("clouded", "blend", {"source": "cloud_tone", "destination": "fibred"},
           blendingmode=SOFT_LIGHT, opacitymult=0.6)
@@ -101,7 +97,7 @@ def build() -> SbsGraph:
     g.add("knot_color", "uniform", outputcolor=(0.30, 0.15, 0.07, 1.0))
     g.add("knotted", "blend", {"source": "knot_color", "destination": "haloed", "opacity": "knot_core"},
           blendingmode=COPY, opacitymult=0.9)
-    g.add("saw_tone", "gradient", {"input1": "saw_turn"}, **_gradient([
+    g.add("saw_tone", "gradient", {"input1": "saw_turn"}, **gradient_keys([
         (0.0, (0.46, 0.46, 0.46)), (1.0, (0.54, 0.54, 0.54))]))
     g.add("sawn", "blend", {"source": "saw_tone", "destination": "knotted"},
           blendingmode=SOFT_LIGHT, opacitymult=0.3)
@@ -120,8 +116,7 @@ def build() -> SbsGraph:
           blendingmode=ADD, opacitymult=0.15)
     g.add("roughness", "blend", {"source": "knot_core", "destination": "rough_weather"},
           blendingmode=SUBTRACT, opacitymult=0.15)
-    g.add("metallic", "uniform", colorswitch=False, outputcolor=(0.0, 0.0, 0.0, 1.0))
-    g.bind("metallic", "outputcolor", const((0.0, 0.0, 0.0, 1.0)).graph())
+    constant_map(g, "metallic", 0.0)
 
     for usage in ("basecolor", "normal", "roughness", "metallic", "height"):
         g.set_output(usage, usage)

@@ -24,14 +24,10 @@ Exposed parameters
 """
 from __future__ import annotations
 
+from blender_match.library.authoring import ADD, COPY, MAX, MULTIPLY, OVERLAY, SOFT_LIGHT, SUBTRACT, constant_map, gradient_keys
 from blender_match.library.expressions import const, get, lerp, minimum, vector
 from blender_match.translator.runtime import SbsGraph
 
-COPY, ADD, SUBTRACT, MULTIPLY, ADD_SUB, MAX, MIN, OVERLAY, SCREEN, SOFT_LIGHT = 0, 1, 2, 3, 4, 5, 6, 9, 10, 11
-
-
-def _gradient(stops):
-    return {"positions": [p for p, _ in stops], "colors": [c for _, rgb in stops for c in (*rgb, 1.0)]}
 
 
 def build() -> SbsGraph:
@@ -72,13 +68,13 @@ def build() -> SbsGraph:
     g.bind("wood_light", "outputcolor", vector(minimum(wood * 1.25, const((1.0, 1.0, 1.0))), 1.0).graph())
     g.add("wood_base", "blend", {"source": "wood_light", "destination": "wood_dark", "opacity": "grain"},
           blendingmode=COPY, opacitymult=1.0)
-    g.add("plank_tone", "gradient", {"input1": "plank_id"}, **_gradient([
+    g.add("plank_tone", "gradient", {"input1": "plank_id"}, **gradient_keys([
         (0.0, (0.26, 0.25, 0.27)), (0.3, (0.46, 0.44, 0.42)), (0.65, (0.56, 0.51, 0.45)),
         (1.0, (0.74, 0.64, 0.50))]))
     g.add("wood_planked", "blend", {"source": "plank_tone", "destination": "wood_base"},
           blendingmode=OVERLAY, opacitymult=0.55)
     g.bind("wood_planked", "opacitymult", get("plank_variation").graph())
-    g.add("cloud_tone", "gradient", {"input1": "clouds"}, **_gradient([
+    g.add("cloud_tone", "gradient", {"input1": "clouds"}, **gradient_keys([
         (0.0, (0.42, 0.42, 0.42)), (1.0, (0.58, 0.56, 0.53))]))
     g.add("wood_clouded", "blend", {"source": "cloud_tone", "destination": "wood_planked"},
           blendingmode=SOFT_LIGHT, opacitymult=0.6)
@@ -102,7 +98,7 @@ def build() -> SbsGraph:
           blendingmode=SUBTRACT, opacitymult=0.05)
     g.add("height", "histogram_range", {"input": "height_grain"}, range=0.9, position=0.55)
     g.add("ao", "ambient_occlusion_2", {"source": "height"}, height_depth=0.12, spreading=0.1)
-    g.add("ao_color", "gradient", {"input1": "ao"}, **_gradient([(0.0, (0.2, 0.2, 0.2)), (1.0, (1.0, 1.0, 1.0))]))
+    g.add("ao_color", "gradient", {"input1": "ao"}, **gradient_keys([(0.0, (0.2, 0.2, 0.2)), (1.0, (1.0, 1.0, 1.0))]))
     g.add("basecolor", "blend", {"source": "ao_color", "destination": "wood_gaps"},
           blendingmode=MULTIPLY, opacitymult=0.5)
 
@@ -118,8 +114,7 @@ def build() -> SbsGraph:
     g.add("rough_gaps", "blend", {"source": "gap_mask", "destination": "rough_worn"},
           blendingmode=MAX, opacitymult=0.85)
     g.add("roughness", "passthrough", {"input": "rough_gaps"})
-    g.add("metallic", "uniform", colorswitch=False, outputcolor=(0.0, 0.0, 0.0, 1.0))
-    g.bind("metallic", "outputcolor", const((0.0, 0.0, 0.0, 1.0)).graph())
+    constant_map(g, "metallic", 0.0)
 
     for usage in ("basecolor", "normal", "roughness", "metallic", "height"):
         g.set_output(usage, usage)

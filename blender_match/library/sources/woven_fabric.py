@@ -22,14 +22,10 @@ Exposed parameters
 """
 from __future__ import annotations
 
-from blender_match.library.expressions import const, get, lerp, vector
+from blender_match.library.authoring import ADD_SUB, COPY, MAX, MULTIPLY, SOFT_LIGHT, SUBTRACT, constant_map, gradient_keys
+from blender_match.library.expressions import get, lerp, vector
 from blender_match.translator.runtime import SbsGraph
 
-COPY, ADD, SUBTRACT, MULTIPLY, ADD_SUB, MAX, MIN, OVERLAY, SCREEN, SOFT_LIGHT = 0, 1, 2, 3, 4, 5, 6, 9, 10, 11
-
-
-def _gradient(stops):
-    return {"positions": [p for p, _ in stops], "colors": [c for _, rgb in stops for c in (*rgb, 1.0)]}
 
 
 def build() -> SbsGraph:
@@ -76,22 +72,22 @@ def build() -> SbsGraph:
     g.bind("weft_base", "outputcolor", vector(get("weft_color", 3), 1.0).graph())
     g.add("threads", "blend", {"source": "weft_base", "destination": "warp_base", "opacity": "weft_top"},
           blendingmode=COPY, opacitymult=1.0)
-    g.add("shade", "gradient", {"input1": "height"}, **_gradient([
+    g.add("shade", "gradient", {"input1": "height"}, **gradient_keys([
         (0.0, (0.25, 0.25, 0.25)), (0.5, (0.80, 0.80, 0.80)), (1.0, (1.0, 1.0, 1.0))]))
     g.add("shaded", "blend", {"source": "shade", "destination": "threads"},
           blendingmode=MULTIPLY, opacitymult=0.6)
     g.bind("shaded", "opacitymult", lerp(0.3, 0.9, get("thread_relief")).graph())
-    g.add("fuzz_tone", "gradient", {"input1": "fuzz_soft"}, **_gradient([
+    g.add("fuzz_tone", "gradient", {"input1": "fuzz_soft"}, **gradient_keys([
         (0.0, (0.42, 0.42, 0.42)), (1.0, (0.62, 0.62, 0.62))]))
     g.add("fuzz_colored", "blend", {"source": "fuzz_tone", "destination": "shaded"},
           blendingmode=SOFT_LIGHT, opacitymult=0.5)
     g.bind("fuzz_colored", "opacitymult", lerp(0.1, 0.9, get("fuzz")).graph())
     g.add("slub", "clouds_1", seed=55, scale=6.0)
-    g.add("slub_tone", "gradient", {"input1": "slub"}, **_gradient([
+    g.add("slub_tone", "gradient", {"input1": "slub"}, **gradient_keys([
         (0.0, (0.44, 0.44, 0.44)), (1.0, (0.58, 0.57, 0.55))]))
     g.add("slubbed", "blend", {"source": "slub_tone", "destination": "fuzz_colored"},
           blendingmode=SOFT_LIGHT, opacitymult=0.5)
-    g.add("ao_color", "gradient", {"input1": "ao"}, **_gradient([(0.0, (0.3, 0.3, 0.3)), (1.0, (1.0, 1.0, 1.0))]))
+    g.add("ao_color", "gradient", {"input1": "ao"}, **gradient_keys([(0.0, (0.3, 0.3, 0.3)), (1.0, (1.0, 1.0, 1.0))]))
     g.add("basecolor", "blend", {"source": "ao_color", "destination": "slubbed"},
           blendingmode=MULTIPLY, opacitymult=0.4)
 
@@ -99,8 +95,7 @@ def build() -> SbsGraph:
     g.add("rough_inv", "invert_grayscale", {"source": "height"})
     g.add("roughness", "histogram_range", {"input": "rough_inv"}, range=0.15, position=0.82)
     g.bind("roughness", "position", get("roughness").graph())
-    g.add("metallic", "uniform", colorswitch=False, outputcolor=(0.0, 0.0, 0.0, 1.0))
-    g.bind("metallic", "outputcolor", const((0.0, 0.0, 0.0, 1.0)).graph())
+    constant_map(g, "metallic", 0.0)
 
     for usage in ("basecolor", "normal", "roughness", "metallic", "height"):
         g.set_output(usage, usage)

@@ -1,0 +1,28 @@
+"""Writing files safely: atomically (a temporary file and a rename, so that a reader never sees a
+half-written file) and never over an existing file unless the caller says so."""
+from __future__ import annotations
+
+import os
+import tempfile
+from pathlib import Path
+
+
+class FileWriteError(ValueError):
+    """A file that may not or cannot be written (names the file and the problem)."""
+
+
+def write_atomic(path: Path, data: bytes, overwrite: bool = False):
+    """Write ``data`` to ``path`` through a temporary file and a rename, so that a reader never
+    sees a half-written file. Refuses to replace an existing file unless ``overwrite``."""
+    path = Path(path)
+    if path.exists() and not overwrite:
+        raise FileWriteError(f"{path}: already exists (pass an overwrite option to replace it)")
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
+    try:
+        with os.fdopen(fd, "wb") as f:
+            f.write(data)
+        os.replace(tmp, path)
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
