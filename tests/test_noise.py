@@ -151,3 +151,37 @@ def test_nodes_have_substance_parameters():
     node = Node("fractal_sum_base", {"min_level": 2, "max_level": 6})
     out = node(ctx=EvalContext(size=64, seed=0))
     assert out.shape == (1, 1, 64, 64) and 0 <= out.min() and out.max() <= 1
+
+
+def test_gradient_noise_has_no_lattice_grid():
+    """Perlin noise alone is 0 at its lattice points and its variance halves along the lattice
+    lines (a visible axis-aligned grid); the layer's variance must be nearly the same at every
+    position within a cell."""
+    n, size = 40, 2048
+    z = lattice_noise(n, size, seed=3, kind="gradient")[0, 0]
+    phase = torch.remainder((torch.arange(size) + 0.5) / size * n - 0.5, 1.0)
+    col = (z ** 2).mean(0)
+    bins = torch.stack([col[(phase * 8).long() == k].mean() for k in range(8)])
+    assert bins.max() / bins.min() < 1.3
+
+
+def _axis_energy_ratio(x: torch.Tensor) -> float:
+    """Spectral energy within 10 degrees of the axes over that within 10 degrees of the diagonals
+    (1 for an isotropic pattern; square blocks put their energy on the axes)."""
+    spec = torch.fft.fft2(x - x.mean()).abs() ** 2
+    n = x.shape[-1]
+    f = torch.fft.fftfreq(n, 1.0 / n)
+    fy, fx = f[:, None].abs(), f[None, :].abs()
+    r = (fx ** 2 + fy ** 2).sqrt()
+    ang = torch.rad2deg(torch.atan2(fy, fx))
+    ring = (r > 16) & (r < n / 2)
+    axes = ring & ((ang < 10) | (ang > 80))
+    diag = ring & ((ang - 45).abs() < 10)
+    return (spec[axes].mean() / spec[diag].mean()).item()
+
+
+def test_bnw_spots_2_has_no_pixel_blocks():
+    """bnw_spots_2 at scale 16 is isotropic: value noise rendered it as square blocks of a few
+    pixels, with most of its energy on the axes."""
+    x = F.noise_bnw_spots_2(scale=16.0, size=512, seed=3)[0, 0]
+    assert _axis_energy_ratio(x) < 1.3

@@ -235,3 +235,25 @@ def test_parquet_weave_mesh_splatter_scratches_creased_basic_looks():
     cr = _render("creased")
     assert cr.std() > 0.1
 
+
+
+def test_scratches_bands_match_full_evaluation_and_wrap():
+    """Scratches are rasterised per line band; the result equals the tile-layout evaluation of the
+    same lines (tile_field, every cell in reach) and tiles."""
+    from blender_match.diffmat.functional.pattern_shapes import aa_coverage, safe_sqrt, tile_field
+
+    def line(x, y, w, s, ex, ey):
+        ratio = torch.sqrt(ex / ey)
+        return aa_coverage(y.abs() - safe_sqrt(1.0 - x * x), w * ratio) * aa_coverage(x.abs() - 1.0, w / ratio)
+
+    size, n = 128, 4
+    out = F.scratches(amount=n, size=size, seed=5)
+    size_xy = torch.tensor([1.4, 0.02])
+    ref = None
+    for layer in range(2):
+        h, _ = tile_field(size, n, n, seed=5 * 2 + layer + 1, profile=line, size_xy=size_xy, position_random=0.5,
+                          scale_random=0.5, rotation=0.0, rotation_random=0.5, luminance_random=0.5,
+                          offset=0.5 * layer)
+        ref = h if ref is None else torch.maximum(ref, h)
+    assert (out - ref).abs().max() < 1e-4
+    assert out.max() > 0.5

@@ -232,7 +232,7 @@ NOISE_RECIPES: dict[str, tuple[Recipe, tuple, tuple]] = {
                  (1, 32, 1), ()),
     # BnW Spots 1/2/3: high-contrast spots (black and white blobs), coarse to fine
     "bnw_spots_1": (Recipe(cells=4, octaves=5, roughness=0.5, gain=1.6), (1, 32, 1), ()),
-    "bnw_spots_2": (Recipe(kind="value", cells=4, octaves=6, roughness=0.6, mode="billow", gain=1.8, offset=-0.3),
+    "bnw_spots_2": (Recipe(cells=4, octaves=6, roughness=0.6, mode="billow", gain=1.8, offset=-0.3),
                     (1, 32, 1), ()),
     "bnw_spots_3": (Recipe(cells=8, octaves=4, roughness=0.7, gain=2.0), (1, 32, 1), ()),
     # Moisture Noise: warped fractal stains

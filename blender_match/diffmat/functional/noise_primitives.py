@@ -239,6 +239,15 @@ def _phases_cached(seed, key, ny, nx, device, dtype):
     return hit
 
 
+def _second_theta(seed, key, kind, ny, nx, disorder, device, dtype):
+    """Phases of the second (half-cell offset) gradient lattice, animated by disorder like the first."""
+    phi, speed = _phases_cached(seed, (key, kind, "offset"), ny, nx, device, dtype)
+    d = _as_batch(disorder, device, dtype)
+    if isinstance(disorder, torch.Tensor) or d.shape[0] > 1 or float(d.reshape(-1)[0]) != 0.0:
+        return TWO_PI * (phi + speed * d)
+    return TWO_PI * phi
+
+
 def _layer_terms(cells, size: int, *, seed, key, kind, interp, disorder, weight, device, dtype):
     """The separable terms [(op_y, t)] of one lattice layer times ``weight`` (number or (B, 1, 1))
     (see the section comment); the layer is ``_apply_y(terms)``."""
@@ -260,12 +269,19 @@ def _layer_terms(cells, size: int, *, seed, key, kind, interp, disorder, weight,
         w = weight / _STD[(kind, interp)]
         return [(ay["lerp"], _apply_x(torch.cos(theta) * w, ax["lerp"]))]
     if kind == "gradient":
+        # Perlin noise is 0 at its lattice points and its variance halves along the lattice lines,
+        # which shows as a faint axis-aligned grid; a second, independent lattice offset by half a
+        # cell (variance highest where the first's is lowest) makes the sum's variance nearly
+        # uniform, so the noise looks isotropic. Both tile; the sum keeps unit std.
         interp_ = "linear" if interp == "nearest" else interp
-        ax = _axis_ops(size, nx, ss, interp_, off, device, dtype)
-        ay = _axis_ops(size, ny, ss, interp_, off, device, dtype)
-        w = weight / _STD[(kind, interp)]
-        gx, gy = torch.cos(theta) * w, torch.sin(theta) * w
-        return [(ay["lerp"], _apply_x(gx, ax["ramp"])), (ay["ramp"], _apply_x(gy, ax["lerp"]))]
+        w = weight / (_STD[(kind, interp)] * math.sqrt(2.0))
+        terms = []
+        for lat_off, th in ((off, theta), (0.0, _second_theta(seed, key, kind, ny, nx, disorder, device, dtype))):
+            ax = _axis_ops(size, nx, ss, interp_, lat_off, device, dtype)
+            ay = _axis_ops(size, ny, ss, interp_, lat_off, device, dtype)
+            gx, gy = torch.cos(th) * w, torch.sin(th) * w
+            terms += [(ay["lerp"], _apply_x(gx, ax["ramp"])), (ay["ramp"], _apply_x(gy, ax["lerp"]))]
+        return terms
     raise ValueError(f"lattice_noise: unknown kind {kind!r}")
 
 
@@ -365,25 +381,31 @@ def _feature_points(n: int, seed: int, key, jitter, disorder, device, dtype):
     return px, py, u[3:6]
 
 
-def _neighbours(size: int, n: int, device, dtype):
-    """For each of the 9 neighbour cells: flat cell index (res, res) and the pixel's position
-    relative to that cell's corner, (res, 1) in x and (res,) broadcast in y."""
+_NB_DJ = (-1, -1, -1, 0, 0, 0, 1, 1, 1)
+_NB_DI = (-1, 0, 1, -1, 0, 1, -1, 0, 1)
+_ROWS_CHUNK = 1 << 20     # candidate values a block of rows evaluates together
+
+
+def _neighbour_tables(size: int, n: int, device, dtype):
+    """Supersampling factor, per-sample cell (res,), offset from the cell's corner (res,) and the
+    flat cell index of the 9 neighbours of every cell, (n, n, 9) (candidate k = 3 (dy+1) + (dx+1))."""
     ss, res, ci, cf = _cell_grid(size, n, device, dtype)
-    out = []
-    for dy in (-1, 0, 1):
-        for dx in (-1, 0, 1):
-            cx = (ci + dx) % n
-            cy = (ci + dy) % n
-            flat = cy[:, None] * n + cx[None, :]
-            rx = (cf - dx)[None, :]
-            ry = (cf - dy)[:, None]
-            out.append((flat, rx, ry))
-    return ss, out
+    ar = torch.arange(n, device=device)
+    dj = torch.tensor(_NB_DJ, device=device)
+    di = torch.tensor(_NB_DI, device=device)
+    ncell = torch.remainder(ar[:, None, None] + dj, n) * n + torch.remainder(ar[None, :, None] + di, n)
+    return ss, res, ci, cf, ncell, dj.to(dtype), di.to(dtype)
 
 
-def _take(values: torch.Tensor, flat: torch.Tensor) -> torch.Tensor:
-    """values (B, n*n) at the flat cell indices (res, res): (B, res, res)."""
-    return values.index_select(-1, flat.reshape(-1)).reshape(values.shape[0], *flat.shape)
+def _split_offsets(px, py, size, n, device, dtype):
+    """Offsets from each sample to the 9 candidate points, split by axis: ox (B, n cy, res x, 9)
+    and oy (B, res y, n cx, 9) (so a sample's offsets are a row of each)."""
+    ss, res, ci, cf, ncell, dj, di = _neighbour_tables(size, n, device, dtype)
+    tx = px[:, ncell] + di                                                  # (B, n, n, 9)
+    ty = py[:, ncell] + dj
+    ox = (cf[:, None] - tx[:, :, ci])                                       # (B, n, res, 9)
+    oy = (cf[:, None, None] - ty.index_select(1, ci))                       # (B, res, n, 9)
+    return ss, res, ci, ncell, ox, oy
 
 
 def cellular_noise(cells: int, size: int, *, seed: int = 0, key="cells", jitter=1.0, disorder=0.0,
@@ -394,29 +416,40 @@ def cellular_noise(cells: int, size: int, *, seed: int = 0, key="cells", jitter=
     second-nearest feature point, in cells), ``value`` (a uniform random value of the nearest cell),
     ``facet`` (a random plane across the nearest cell: the value plus a random slope times the
     offset from its feature point, the look of crystal facets).
+
+    The 9 candidates lie on a last, contiguous axis; a sample's x offsets depend on its cell row and
+    its column only, its y offsets on its row and cell column, so a block of rows is two row
+    gathers of small tables; the candidates' random values are read once per sample, for the
+    nearest only.
     """
     n = max(int(cells), 1)
     px, py, attr = _feature_points(n, seed, key, jitter, disorder, device, dtype)
-    ss, neigh = _neighbours(size, n, device, dtype)
-    sx = (attr[1] * 2 - 1)[None]
-    sy = (attr[2] * 2 - 1)[None]
-    val = attr[0][None]
-    d1 = d2 = v1 = fc1 = None
-    for flat, rx, ry in neigh:
-        ox = rx - _take(px, flat)                                       # (B, res, res)
-        oy = ry - _take(py, flat)
-        dist = ox * ox + oy * oy
-        v = _take(val, flat)
-        fc = v + 0.6 * (_take(sx, flat) * ox + _take(sy, flat) * oy)
-        if d1 is None:
-            d1, d2, v1, fc1 = dist, torch.full_like(dist, 1e4), v, fc
-            continue
-        closer = dist < d1
-        d2 = torch.where(closer, d1, torch.minimum(d2, dist))
-        d1 = torch.where(closer, dist, d1)
-        v1 = torch.where(closer, v.expand_as(v1) if v.shape != v1.shape else v, v1)
-        fc1 = torch.where(closer, fc, fc1)
-    out = {"f1": torch.sqrt(d1 + 1e-12), "f2": torch.sqrt(d2 + 1e-12), "value": v1, "facet": fc1}
+    ss, res, ci, ncell, ox, oy = _split_offsets(px, py, size, n, device, dtype)
+    b = ox.shape[0]
+    nflat = ncell.reshape(-1)
+    val = attr[0][nflat]                                                    # (n*n*9,)
+    slx = (attr[1] * 2 - 1)[nflat]
+    sly = (attr[2] * 2 - 1)[nflat]
+    d1s, d2s, v1s, fcs = [], [], [], []
+    chunk = max(1, _ROWS_CHUNK // (9 * res * b))
+    for r0 in range(0, res, chunk):
+        rows = ci[r0:r0 + chunk]
+        m = rows.shape[0]
+        gx = ox.index_select(1, rows)                                       # (B, m, res, 9)
+        gy = oy[:, r0:r0 + m].index_select(2, ci)
+        dist = torch.addcmul(gx * gx, gy, gy)
+        d12, i12 = torch.topk(dist, 2, dim=-1, largest=False)               # sorted ascending
+        i1 = i12[..., :1]
+        k1 = ((rows[:, None] * n + ci[None, :]).view(1, m, res, 1) * 9 + i1)[..., 0]   # (B, m, res)
+        o1x = gx.gather(-1, i1)[..., 0]
+        o1y = gy.gather(-1, i1)[..., 0]
+        v = val[k1]
+        d1s.append(d12[..., 0])
+        d2s.append(d12[..., 1])
+        v1s.append(v)
+        fcs.append(v + 0.6 * (slx[k1] * o1x + sly[k1] * o1y))
+    out = {"f1": torch.sqrt(torch.cat(d1s, 1) + 1e-12), "f2": torch.sqrt(torch.cat(d2s, 1) + 1e-12),
+           "value": torch.cat(v1s, 1), "facet": torch.cat(fcs, 1)}
     out = {k: v[:, None] for k, v in out.items()}
     if ss > 1:
         out = {k: F.avg_pool2d(v, ss) for k, v in out.items()}
@@ -428,20 +461,32 @@ def gaussian_spot_field(cells: int, size: int, *, seed: int = 0, key="spots", ra
     """A sum of Gaussian bumps, one per lattice cell at a jittered point, random amplitude and
     random size (radius in cells, x [0.5, 1.5]); a cell shows its spot when its random draw is
     below ``density`` (smoothly, so density is differentiable). Returns (B, 1, size, size) >= 0.
+
+    A bump is separable, amp exp(-ox^2 / 2r^2) exp(-oy^2 / 2r^2): the x factor (with the amplitude)
+    is a table over (cell row, sample column, candidate), the y factor over (sample row, cell
+    column, candidate), so the field is a 9-term dot product of two row gathers per sample.
     """
     n = max(int(cells), 1)
     px, py, attr = _feature_points(n, seed, key, jitter, disorder, device, dtype)
-    ss, neigh = _neighbours(size, n, device, dtype)
+    ss, res, ci, ncell, ox, oy = _split_offsets(px, py, size, n, device, dtype)
     rad = _as_batch(radius, device, dtype).reshape(-1, 1) * (0.5 + attr[1])   # (B, n*n)
     dens = _as_batch(density, device, dtype).reshape(-1, 1)
     amp = (0.4 + 0.6 * attr[0]) * torch.sigmoid((dens - attr[2]) * 12.0)
-    total = 0.0
-    for flat, rx, ry in neigh:
-        ox = rx - _take(px, flat)
-        oy = ry - _take(py, flat)
-        r = _take(rad, flat)
-        total = total + _take(amp, flat) * torch.exp(-(ox * ox + oy * oy) / (2 * r * r))
-    out = total[:, None]
+    inv2r2 = 0.5 / (rad * rad)
+    ex = amp[:, ncell][:, :, ci] * torch.exp(-(ox * ox) * inv2r2[:, ncell][:, :, ci])          # (B, n, res, 9)
+    iy = inv2r2[:, ncell].index_select(1, ci)                                                   # (B, res, n, 9)
+    ey = torch.exp(-(oy * oy) * iy)
+    b = max(ex.shape[0], ey.shape[0])
+    ex, ey = ex.expand(b, -1, -1, -1), ey.expand(b, -1, -1, -1)
+    parts = []
+    chunk = max(1, _ROWS_CHUNK // (9 * res * b))
+    for r0 in range(0, res, chunk):
+        rows = ci[r0:r0 + chunk]
+        m = rows.shape[0]
+        gx = ex.index_select(1, rows)                                       # (B, m, res, 9)
+        gy = ey[:, r0:r0 + m].index_select(2, ci)
+        parts.append((gx * gy).sum(-1))
+    out = torch.cat(parts, 1)[:, None]
     if ss > 1:
         out = F.avg_pool2d(out, ss)
     return out

@@ -169,6 +169,21 @@ RND_LUM, RND_MASK, RND_SCALE, RND_PX, RND_PY, RND_ROT, RND_SPEC, RND_R, RND_G, R
 N_RND = 10
 
 
+_AXIS_CACHE: dict = {}
+
+
+def _pixel_axis(size: int, device, dtype) -> torch.Tensor:
+    """Pixel-centre coordinates (size,) in [0, 1), cached per (size, device, dtype)."""
+    key = (size, str(device), dtype)
+    hit = _AXIS_CACHE.get(key)
+    if hit is None:
+        hit = ((torch.arange(size, dtype=torch.float64) + 0.5) / size).to(device=device, dtype=dtype)
+        if len(_AXIS_CACHE) > 64:
+            _AXIS_CACHE.clear()
+        _AXIS_CACHE[key] = hit
+    return hit
+
+
 def _split2(value, ref):
     t = param4d(value, ref)
     if t.shape[1] == 1:
@@ -179,7 +194,8 @@ def _split2(value, ref):
 def tile_field(size: int, nx: int, ny: int, *, seed: int, profile: Callable, scale=1.0, size_xy=(1.0, 1.0),
                interstice=(0.0, 0.0), offset=0.0, position_random=0.0, scale_random=0.0, rotation=0.0,
                rotation_random=0.0, luminance_random=0.0, mask_random=0.0, pattern_specific=0.5,
-               pattern_specific_random=0.0, softness=0.0, color_random=None, device=None, dtype=torch.float32):
+               pattern_specific_random=0.0, softness=0.0, color_random=None, own_cell: bool = False, device=None,
+               dtype=torch.float32):
     """A grid of ``nx`` × ``ny`` cells, one shape per cell; every alternate row is shifted right by
     ``offset`` cells. The shape fills its cell at scale 1 less the ``interstice`` gap (fraction of
     the cell), times ``size_xy`` (non-uniform size). Per cell, from ``lattice_random(seed)``:
@@ -193,9 +209,15 @@ def tile_field(size: int, nx: int, ny: int, *, seed: int, profile: Callable, sca
     half extents in texture units. Overlapping shapes combine by maximum. Returns ``(height, color)``: height (B, 1, H, W) and,
     when ``color_random`` is given, the winning cell's random colour (B, 3, H, W) mixed towards
     white by 1 - color_random, else None.
+
+    ``own_cell``: the caller's profile never increases away from the shape's centre along x or y
+    (square, disc, bell…); then, when every cell has the same geometry (no position, scale,
+    rotation, mask or pattern-specific randomness, quarter-turn rotation), a neighbour's shape is
+    never higher than the pixel's own shape, and only the own cell is evaluated (the neighbours'
+    soft edges spilling over the border differ from the own one's by their luminance only).
     """
     ref = ref_tensor(device, dtype)
-    u, v = pixel_grid(size, device, dtype)
+    ucoord = _pixel_axis(size, device, dtype)
     rnd = lattice_random(seed, N_RND, nx * ny, device, dtype)
     scale = param4d(scale, ref)
     sx, sy = _split2(size_xy, ref)
@@ -236,19 +258,57 @@ def tile_field(size: int, nx: int, ny: int, *, seed: int, profile: Callable, sca
     mx, my = int(mxb.max()), int(myb.max())
     per_element = bool((mxb != mx).any() or (myb != my).any())
 
-    # separable coordinates: rows depend on v only, so row quantities are (.., H, 1)
-    X = u[..., :1, :] * nx  # (1, 1, 1, W)
-    Y = v[..., :, :1] * ny  # (1, 1, H, 1)
-    row0 = torch.floor(Y + 0.5 - 0.5 * my)
-    pix = 1.0 / size
-    table = rnd.view(N_RND, ny, nx)
-
     def active(t):
         return t.requires_grad or bool((t != 0).any())
 
     use_pos, use_scale = active(position_random), active(scale_random)
     use_rot = active(rotation) or active(rotation_random)
     use_lum, use_mask, use_spec = active(luminance_random), active(mask_random), active(spec_random)
+    if own_cell and not (rotated or use_pos or use_scale or use_mask or use_spec or active(rotation_random)):
+        mx, my, per_element = 1, 1, False
+
+    # separable coordinates: rows depend on v only, so row quantities are (.., H, 1)
+    X = (ucoord * nx).view(1, 1, 1, size)   # (1, 1, 1, W)
+    Y = (ucoord * ny).view(1, 1, size, 1)   # (1, 1, H, 1)
+    row0 = torch.floor(Y + 0.5 - 0.5 * my)
+    pix = 1.0 / size
+    # per-cell derived quantities (B|1, ny * nx): every transcendental is evaluated once a cell, and
+    # a pixel gathers only what varies between cells
+    def pc(t):
+        return t.reshape(-1, 1)
+
+    cellv = {}
+    ex_c, ey_c = hx, hy
+    if use_scale:
+        sc = 1.0 - pc(scale_random) * rnd[RND_SCALE]
+        ex_c, ey_c = (pc(hx) * sc).clamp_min(1e-6), (pc(hy) * sc).clamp_min(1e-6)
+        cellv["ex"], cellv["ey"] = ex_c, ey_c
+        cellv["w"] = pix / torch.sqrt(ex_c * ey_c) + pc(softness)
+    if use_pos:
+        cellv["jx"] = pc(position_random) * (rnd[RND_PX] - 0.5) / nx
+        cellv["jy"] = pc(position_random) * (rnd[RND_PY] - 0.5) / ny
+    if use_rot:
+        ang = TAU * (pc(rotation) + pc(rotation_random) * (rnd[RND_ROT] - 0.5))
+        ca, sa = torch.cos(ang), torch.sin(ang)
+        iex = 1.0 / (ex_c if use_scale else pc(hx.clamp_min(1e-6)))
+        iey = 1.0 / (ey_c if use_scale else pc(hy.clamp_min(1e-6)))
+        cellv["a11"], cellv["a12"], cellv["a21"], cellv["a22"] = ca * iex, sa * iex, -sa * iey, ca * iey
+    if use_lum or use_mask:
+        fac = 1.0
+        if use_lum:
+            fac = 1.0 - pc(luminance_random) * rnd[RND_LUM]
+        if use_mask:
+            # soft mask: fully visible at mask_random = 0, fully hidden at mask_random = 1
+            fac = fac * smoothstep01((rnd[RND_MASK] - pc(mask_random) * 1.05) / 0.05 + 1.0)
+        cellv["fac"] = fac
+    if use_spec:
+        cellv["sp"] = (pc(spec) + pc(spec_random) * (rnd[RND_SPEC] - 0.5)).clamp(0.0, 1.0)
+    if cr is not None:
+        for name, k in (("r", RND_R), ("g", RND_G), ("b", RND_B)):
+            cellv[name] = 1.0 - pc(cr) * (1.0 - rnd[k])
+    cellv = {k: v.reshape(v.shape[0], ny, nx) for k, v in cellv.items()}
+    hx_e, hy_e = hx.clamp_min(1e-6), hy.clamp_min(1e-6)
+    w_fixed = pix / torch.sqrt(hx_e * hy_e) + softness
     best = None
     color = None
     for dj in range(my):
@@ -257,7 +317,8 @@ def tile_field(size: int, nx: int, ny: int, *, seed: int, profile: Callable, sca
         xs = X - shift
         c0 = torch.floor(xs + 0.5 - 0.5 * mx)
         fy = (Y - r - 0.5) / ny
-        rows = table[:, torch.remainder(r, ny).long().view(-1)]  # (K, H, nx)
+        ridx = torch.remainder(r, ny).long().view(-1)
+        rows = {k: v[:, ridx] for k, v in cellv.items()}  # (B|1, H, nx)
         if per_element:
             r_lo = torch.floor(Y + 0.5 - 0.5 * myb)
             keep_r = (r >= r_lo) & (r < r_lo + myb)
@@ -266,36 +327,33 @@ def tile_field(size: int, nx: int, ny: int, *, seed: int, profile: Callable, sca
             c = c0 + di
             fx = (xs - c - 0.5) / nx  # (B|1, 1, H, W)
             bsz = c.shape[0]
-            cidx = torch.remainder(c, nx).long().view(1, bsz, size, size).expand(N_RND, -1, -1, -1)
-            vals = torch.gather(rows.unsqueeze(1).expand(-1, bsz, -1, -1), 3, cidx).unsqueeze(2)  # (K, B, 1, H, W)
-            s = 1.0 - scale_random * vals[RND_SCALE] if use_scale else 1.0
+            vals = {}
+            if rows:
+                cidx = torch.remainder(c, nx).long().view(bsz, size, -1).expand(-1, -1, size)
+                for k, t in rows.items():
+                    bk = max(bsz, t.shape[0])
+                    vals[k] = torch.gather(t.expand(bk, -1, -1), 2, cidx.expand(bk, -1, -1)).unsqueeze(1)
             dx, dy = fx, fy
             if use_pos:
-                dx = dx - position_random * (vals[RND_PX] - 0.5) / nx
-                dy = dy - position_random * (vals[RND_PY] - 0.5) / ny
-            ex = (hx * s).clamp_min(1e-6)
-            ey = (hy * s).clamp_min(1e-6)
+                dx = dx - vals["jx"]
+                dy = dy - vals["jy"]
+            ex, ey = (vals["ex"], vals["ey"]) if use_scale else (hx_e, hy_e)
             if use_rot:
-                ang = TAU * (rotation + rotation_random * (vals[RND_ROT] - 0.5))
-                ca, sa = torch.cos(ang), torch.sin(ang)
-                lx = (ca * dx + sa * dy) / ex
-                ly = (-sa * dx + ca * dy) / ey
+                lx = vals["a11"] * dx + vals["a12"] * dy
+                ly = vals["a21"] * dx + vals["a22"] * dy
             else:
                 lx, ly = dx / ex, dy / ey
-            w = pix / torch.sqrt(ex * ey)
-            sp = (spec + spec_random * (vals[RND_SPEC] - 0.5)).clamp(0.0, 1.0) if use_spec else spec
-            h = profile(lx, ly, w + softness, sp, ex, ey)
-            if use_lum:
-                h = h * (1.0 - luminance_random * vals[RND_LUM])
-            if use_mask:
-                # soft mask: fully visible at mask_random = 0, fully hidden at mask_random = 1
-                h = h * smoothstep01((vals[RND_MASK] - mask_random * 1.05) / 0.05 + 1.0)
+            w = vals["w"] if use_scale else w_fixed
+            sp = vals["sp"] if use_spec else spec
+            h = profile(lx, ly, w, sp, ex, ey)
+            if "fac" in vals:
+                h = h * vals["fac"]
             if per_element:
                 h = h * (keep_r & (c >= c_lo) & (c < c_lo + mxb))
             if h.shape[-2:] != (size, size):
                 h = h.expand(-1, -1, size, size)
             if cr is not None:
-                col = 1.0 - cr * (1.0 - torch.cat([vals[RND_R], vals[RND_G], vals[RND_B]], dim=1))
+                col = torch.cat([vals["r"], vals["g"], vals["b"]], dim=1)
             if best is None:
                 best = h
                 if cr is not None:
@@ -437,28 +495,78 @@ def scratches(*, amount: int = 6, length=1.4, width=0.02, angle=0.0, angle_rando
     """Scratches Generator (simplified): an ``amount`` × ``amount`` lattice of cells, each holding
     one thin line (a capsule) of ``length`` cell lengths (× 1 - length_random r) and ``width`` of
     a cell, oriented ``angle`` ± ``angle_random``/2 turns, luminance × 1 - luminance_random r; two
-    staggered lattices so lines cross cell borders. Lines taper towards their ends."""
+    staggered lattices so lines cross cell borders. Lines taper towards their ends.
+
+    The lines are thin, so each is rasterised over its own band of pixels only (the pixels whose
+    box can meet it: one column, or row, of a few pixels per pixel of its length) and the bands are
+    combined by a maximum scattered into the image, wrapping around (the image tiles); a pixel's
+    value is the same formula as a full-image evaluation, so the result does not depend on how the
+    bands are cut."""
     amount = check_int(amount, "scratches_generator.amount", 1, 256)
+    n = amount
     ref = ref_tensor(device, dtype)
-    length = param4d(length, ref)
-    width = param4d(width, ref)
-    b = max(length.shape[0], width.shape[0])
-    size_xy = torch.cat([length.expand(b, 1, 1, 1), width.expand(b, 1, 1, 1)], dim=1)
 
-    def line(x, y, w, s, ex, ey):
-        # local units: the segment spans x in [-1, 1]; |y| = 1 is its half width at the middle
-        taper = safe_sqrt(1.0 - x * x)
-        ratio = torch.sqrt(ex / ey)  # one pixel is w·ratio local units across the line
-        return aa_coverage(y.abs() - taper, w * ratio) * aa_coverage(x.abs() - 1.0, w / ratio)
+    def pc(v):
+        return param4d(v, ref).reshape(-1, 1)
 
-    out = None
+    length, width, angle, angle_random = pc(length), pc(width), pc(angle), pc(angle_random)
+    length_random, luminance_random, mask_random = pc(length_random), pc(luminance_random), pc(mask_random)
+    pix = 1.0 / size
+    # the lines of both layers: centres, half extents, direction, luminance (B|1, L)
+    cxs, cys, rnds = [], [], []
+    r_idx = torch.arange(n, device=device, dtype=dtype).repeat_interleave(n)   # row of each cell
+    c_idx = torch.arange(n, device=device, dtype=dtype).repeat(n)
     for layer in range(2):
-        h, _ = tile_field(size, amount, amount, seed=seed * 2 + layer + 1, profile=line, scale=1.0,
-                          size_xy=size_xy, position_random=0.5, scale_random=length_random,
-                          rotation=angle, rotation_random=angle_random, luminance_random=luminance_random,
-                          mask_random=mask_random, offset=0.5 * layer, device=device, dtype=dtype)
-        out = h if out is None else torch.maximum(out, h)
-    return out
+        rnd = lattice_random(seed * 2 + layer + 1, N_RND, n * n, device, dtype)
+        shift = 0.5 * layer * torch.remainder(r_idx, 2.0)
+        # position_random 0.5: jitter up to a quarter cell each way
+        cxs.append((c_idx + 0.5 + shift) / n + 0.5 * (rnd[RND_PX] - 0.5) / n)
+        cys.append((r_idx + 0.5) / n + 0.5 * (rnd[RND_PY] - 0.5) / n)
+        rnds.append(rnd)
+    rnd = torch.cat(rnds, dim=1)                                          # (N_RND, L)
+    cx, cy = torch.cat(cxs)[None], torch.cat(cys)[None]                   # (1, L)
+    s = 1.0 - length_random * rnd[RND_SCALE]
+    ex = (0.5 / n * length * s).clamp_min(1e-6)                           # (B|1, L)
+    ey = (0.5 / n * width * s).clamp_min(1e-6)
+    ang = TAU * (angle + angle_random * (rnd[RND_ROT] - 0.5))
+    ca, sa = torch.cos(ang), torch.sin(ang)
+    lum = (1.0 - luminance_random * rnd[RND_LUM]) * smoothstep01((rnd[RND_MASK] - mask_random * 1.05) / 0.05 + 1.0)
+    w = pix / torch.sqrt(ex * ey)
+    ratio = torch.sqrt(ex / ey)
+    b = max(t.shape[0] for t in (ex, ey, ca, lum))
+    cx, cy, ex, ey, ca, sa, lum, w, ratio = (t.expand(b, -1) for t in (cx, cy, ex, ey, ca, sa, lum, w, ratio))
+    with torch.no_grad():
+        # band of each line: along its major axis every pixel of its extent, across it the pixels
+        # within half a width (+ half a pixel of anti-aliasing) of the centre line
+        lh, wh = ex + 0.5 * pix, ey + 0.5 * pix
+        xmajor = ca.abs() >= sa.abs()
+        cmaj = torch.where(xmajor, ca, sa).abs()
+        major_half = lh * torch.where(xmajor, ca, sa).abs() + wh * torch.where(xmajor, sa, ca).abs()
+        k_max = int(torch.ceil(2.0 * major_half.max() * size)) + 2
+        r_max = int(torch.ceil(2.0 * (wh / cmaj).max() * size)) + 2
+        cmaj_c = torch.where(xmajor, cx, cy)                                # centre on the major axis
+        cmin_c = torch.where(xmajor, cy, cx)
+        slope = torch.where(xmajor, sa / ca, ca / sa)                       # minor per major
+        k0 = torch.floor((cmaj_c - major_half) * size)                      # first pixel (major)
+        kk = k0[..., None] + torch.arange(k_max, device=device, dtype=dtype)          # (B, L, K)
+        centre_minor = cmin_c[..., None] + ((kk + 0.5) * pix - cmaj_c[..., None]) * slope[..., None]
+        j0 = torch.floor(centre_minor * size - 0.5 * r_max + 0.5)
+        jj = j0[..., None] + torch.arange(r_max, device=device, dtype=dtype)          # (B, L, K, R)
+        kk = kk[..., None].expand_as(jj)
+        xm = xmajor[..., None, None]
+        pxi = torch.where(xm, kk, jj)
+        pyi = torch.where(xm, jj, kk)
+        flat = (torch.remainder(pyi, size) * size + torch.remainder(pxi, size)).long().reshape(b, -1)
+    e = (slice(None), slice(None), None, None)
+    dx = (pxi + 0.5) * pix - cx[e]
+    dy = (pyi + 0.5) * pix - cy[e]
+    lx = (ca[e] * dx + sa[e] * dy) / ex[e]
+    ly = (ca[e] * dy - sa[e] * dx) / ey[e]
+    taper = safe_sqrt(1.0 - lx * lx)
+    h = aa_coverage(ly.abs() - taper, w[e] * ratio[e]) * aa_coverage(lx.abs() - 1.0, w[e] / ratio[e]) * lum[e]
+    out = torch.zeros(b, size * size, device=device, dtype=dtype)
+    out = out.scatter_reduce(1, flat, h.reshape(b, -1), reduce="amax", include_self=True)
+    return out.view(b, 1, size, size)
 
 
 # ----------------------------------------------------------------------------------------------

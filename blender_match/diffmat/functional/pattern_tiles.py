@@ -36,6 +36,15 @@ def _image_profile(image):
     return profile
 
 
+# shapes whose height never increases away from their centre along x or y (``tile_field(own_cell=)``)
+MONOTONE_SHAPES = frozenset(("square", "disc", "paraboloid", "bell", "gaussian", "thorn", "pyramid", "brick",
+                             "ridged_bell", "capsule", "cone", "hemisphere"))
+
+
+def _monotone(pattern: int) -> bool:
+    return TILE_PATTERNS[int(pattern)] in MONOTONE_SHAPES
+
+
 def _pattern_profile(pattern: int, image, where: str):
     name = TILE_PATTERNS[check_enum(pattern, f"{where}.pattern", range(len(TILE_PATTERNS)))]
     if name == "image":
@@ -60,7 +69,8 @@ def tile_pattern(pattern_input_1=None, *, x_amount: int = 10, y_amount: int = 10
                         interstice=interstice, offset=offset, position_random=position_random,
                         scale_random=scale_random, rotation=rotation, rotation_random=rotation_random,
                         luminance_random=luminance_random, mask_random=mask_random,
-                        pattern_specific=pattern_specific, softness=softness, device=device, dtype=dtype)
+                        pattern_specific=pattern_specific, softness=softness, own_cell=_monotone(pattern),
+                        device=device, dtype=dtype)
     return out
 
 
@@ -81,7 +91,7 @@ def tile_pattern_color(pattern_input_1=None, *, x_amount: int = 10, y_amount: in
                         scale_random=scale_random, rotation=rotation, rotation_random=rotation_random,
                         luminance_random=luminance_random, mask_random=mask_random,
                         pattern_specific=pattern_specific, softness=softness, color_random=color_random,
-                        device=device, dtype=dtype)
+                        own_cell=_monotone(pattern), device=device, dtype=dtype)
     ref = ref_tensor(device, dtype)
     fg = param4d(pattern_color, ref)[:, :3] * col
     bg = param4d(background_color, ref)[:, :3]
@@ -101,7 +111,7 @@ def tile_sampler_pattern(pattern_input=None, *, x_amount: int = 16, y_amount: in
     out, _ = tile_field(size, nx, ny, seed=seed, profile=profile, scale=scale, size_xy=size_xy,
                         offset=offset, position_random=position_random, scale_random=scale_random,
                         rotation=rotation, rotation_random=rotation_random, luminance_random=luminance_random,
-                        mask_random=mask_random, device=device, dtype=dtype)
+                        mask_random=mask_random, own_cell=_monotone(pattern), device=device, dtype=dtype)
     return out
 
 
