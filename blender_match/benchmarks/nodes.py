@@ -10,7 +10,8 @@ the peak resident memory of that process above its resident memory after the imp
 graph's construction (CUDA: the peak allocation above the allocation then), measured over the
 case's first evaluation, so it is the memory the evaluation itself needs: values, the autograd
 graph, FFT and sampling buffers. Times are the best of ``repeats`` warm runs after that one
-(the 2048² forward: the cold run itself).
+(the 2048² forward: the cold run itself). The last two rows repeat the 512² cases with the
+generators' parameters frozen, as the paper optimises (generator outputs cached).
 """
 from __future__ import annotations
 
@@ -21,13 +22,18 @@ from .measure import best_of, in_subprocess, measure
 TARGETS = {"forward_512": 0.3, "backward_512": 0.6, "forward_2048": 5.0}
 
 
-def case(kind: str, size: int, device: str = "cpu", repeats: int = 3) -> dict:
+def case(kind: str, size: int, device: str = "cpu", repeats: int = 3, frozen_generators: bool = False) -> dict:
     """One benchmark case in this process: ``kind`` "forward" (no grad) or "backward" (forward,
     loss, backward). Returns the best warm time (or the cold time when ``repeats`` is 0), the cold
-    run's peak memory above the baseline, and the node count."""
+    run's peak memory above the baseline, and the node count. ``frozen_generators`` freezes every
+    generator's parameters (the MATch paper's setting): their outputs are then cached."""
     from ..bundled_graphs import build
 
     graph = build("example").to(device)
+    if frozen_generators:
+        for name, node in graph.nodes.items():
+            if node.spec.kind == "generator":
+                graph.freeze(name)
 
     def forward():
         with torch.no_grad():
@@ -51,6 +57,8 @@ def run(device: str = "cpu", repeats: int = 3) -> list[dict]:
     fwd = in_subprocess(fn, "forward", 512, device, repeats)
     both = in_subprocess(fn, "backward", 512, device, repeats)
     big = in_subprocess(fn, "forward", 2048, device, 0)
+    fwd_frozen = in_subprocess(fn, "forward", 512, device, repeats, True)
+    both_frozen = in_subprocess(fn, "backward", 512, device, repeats, True)
     nodes = fwd["nodes"]
     return [
         {"case": "forward 512²", "nodes": nodes, "seconds": fwd["seconds"],
@@ -59,4 +67,9 @@ def run(device: str = "cpu", repeats: int = 3) -> list[dict]:
          "peak_mib": both["peak_bytes"] / 2**20, "target_s": TARGETS["backward_512"]},
         {"case": "forward 2048² (cold)", "nodes": nodes, "seconds": big["seconds"],
          "peak_mib": big["peak_bytes"] / 2**20, "target_s": TARGETS["forward_2048"]},
+        {"case": "forward 512², generators frozen", "nodes": nodes, "seconds": fwd_frozen["seconds"],
+         "peak_mib": fwd_frozen["peak_bytes"] / 2**20, "target_s": TARGETS["forward_512"]},
+        {"case": "backward 512², generators frozen", "nodes": nodes,
+         "seconds": max(both_frozen["seconds"] - fwd_frozen["seconds"], 0.0),
+         "peak_mib": both_frozen["peak_bytes"] / 2**20, "target_s": TARGETS["backward_512"]},
     ]
