@@ -141,6 +141,9 @@ def blend(source: torch.Tensor, destination: torch.Tensor, opacity: torch.Tensor
         return torch.lerp(bg, _target(mode, fg, bg), weight).clamp(0.0, 1.0)
 
     assert bg.shape[1] == COLOR
+    if alphablending == 0 and (not torch.is_grad_enabled() or not (
+            fg.requires_grad or bg.requires_grad or weight.requires_grad)):
+        return _blend_color_nograd(mode, fg, bg, weight)
     f_rgb, f_a = fg[:, :3], fg[:, 3:]
     b_rgb, b_a = bg[:, :3], bg[:, 3:]
     t = _target(mode, f_rgb, b_rgb)
@@ -153,3 +156,26 @@ def blend(source: torch.Tensor, destination: torch.Tensor, opacity: torch.Tensor
     else:  # 3: premultiplied
         rgb = weight * t + (1 - a) * b_rgb
     return torch.cat([rgb, out_a], dim=1).clamp(0.0, 1.0)
+
+
+def _blend_color_nograd(mode: int, fg: torch.Tensor, bg: torch.Tensor, weight: torch.Tensor) -> torch.Tensor:
+    """Colour blend with alpha blending 0 (source alpha) without autograd: the same arithmetic as
+    ``blend``, written into one preallocated RGBA output and clamped in place."""
+    with torch.no_grad():
+        f_rgb, f_a = fg[:, :3], fg[:, 3:]
+        b_rgb, b_a = bg[:, :3], bg[:, 3:]
+        if mode == 9:
+            fb = f_rgb * b_rgb
+            diff = (f_rgb + b_rgb).mul_(2.0).sub_(1.0).addcmul_(fb, fb.new_full((), -4.0))
+            t = fb.mul_(2.0).addcmul_(_step(b_rgb - 0.5), diff)
+            del diff
+        elif mode == 10:
+            t = (1 - f_rgb).mul_(1 - b_rgb).neg_().add_(1.0)
+        else:
+            t = _target(mode, f_rgb, b_rgb)
+        a = weight * f_a
+        shape = torch.broadcast_shapes(t.shape, a.shape, b_rgb.shape)
+        out = torch.empty((shape[0], 4) + tuple(shape[2:]), dtype=bg.dtype, device=bg.device)
+        torch.lerp(b_rgb, t, a, out=out[:, :3])
+        torch.addcmul(a, b_a, (1 - a), out=out[:, 3:])
+        return out.clamp_(0.0, 1.0)

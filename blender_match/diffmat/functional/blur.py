@@ -132,6 +132,16 @@ def sharpen(input1: torch.Tensor, *, intensity=1.0) -> torch.Tensor:
         x = input1
         # one circular pad, then the four neighbours as strided views of it (no roll copies)
         p = F.pad(x, (s, s, s, s), mode="circular")
+        if not torch.is_grad_enabled() or not (x.requires_grad or k.requires_grad):
+            with torch.no_grad():   # the same arithmetic on one in-place buffer
+                neigh = torch.add(p[..., s:s + h, :w], p[..., s:s + h, 2 * s:])
+                neigh.add_(torch.add(p[..., :h, s:s + w], p[..., 2 * s:, s:s + w]))
+                del p
+                torch.addcmul(x, neigh, x.new_full((), -0.25), out=neigh)
+                if neigh.shape[0] >= k.shape[0]:
+                    torch.addcmul(x, neigh, k[:, :, None, None], out=neigh)
+                    return neigh.clamp_(0.0, 1.0)
+                return torch.addcmul(x, neigh, k[:, :, None, None]).clamp_(0.0, 1.0)
         neigh = (p[..., s:s + h, :w] + p[..., s:s + h, 2 * s:]) + (p[..., :h, s:s + w] + p[..., 2 * s:, s:s + w])
         lap = torch.addcmul(x, neigh, x.new_full((), -0.25))      # x - mean of the four neighbours
         return torch.addcmul(x, lap, k[:, :, None, None]).clamp(0.0, 1.0)

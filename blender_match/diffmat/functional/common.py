@@ -218,8 +218,15 @@ def gaussian_blur(img: torch.Tensor, sigma, sigma_y=None, angle=None) -> torch.T
 def gradient_wrap(img: torch.Tensor) -> tuple[torch.Tensor, torch.Tensor]:
     """Central-difference slopes (d/du, d/dv) in value per texture unit, wrapping around the edges."""
     size = img.shape[-1]
-    dx = (torch.roll(img, -1, dims=-1) - torch.roll(img, 1, dims=-1)) * (size / 2)
-    dy = (torch.roll(img, -1, dims=-2) - torch.roll(img, 1, dims=-2)) * (size / 2)
+    if img.dim() != 4:
+        dx = (torch.roll(img, -1, dims=-1) - torch.roll(img, 1, dims=-1)) * (size / 2)
+        dy = (torch.roll(img, -1, dims=-2) - torch.roll(img, 1, dims=-2)) * (size / 2)
+        return dx, dy
+    # one circular pad and the four neighbours as strided views (no roll copies); same values
+    h, w = img.shape[-2:]
+    p = F.pad(img, (1, 1, 1, 1), mode="circular")
+    dx = torch.sub(p[..., 1:h + 1, 2:], p[..., 1:h + 1, :w]).mul_(size / 2)
+    dy = torch.sub(p[..., 2:, 1:w + 1], p[..., :h, 1:w + 1]).mul_(size / 2)
     return dx, dy
 
 

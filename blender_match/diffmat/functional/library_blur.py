@@ -13,8 +13,8 @@ import math
 import torch
 
 from ..errors import DiffMatError
-from .common import (frequencies, gaussian_blur, gradient_wrap, lerp, param4d, pixel_grid,
-                     sample_wrap, to_gray)
+from .common import (_grid_affine, frequencies, gaussian_blur, gradient_wrap, lerp, param4d,
+                     pixel_grid, sample_wrap, to_gray)
 from .library_adjust import _bool, _expand_batch
 
 __all__ = ["blur_hq", "slope_blur", "non_uniform_blur", "highpass", "vector_warp", "vector_morph",
@@ -60,6 +60,9 @@ def slope_blur(source: torch.Tensor, effect: torch.Tensor, *, samples: int = 8, 
     if isinstance(samples, bool) or int(samples) < 1:
         raise DiffMatError(f"slope_blur.samples: expected a positive integer, got {samples!r}")
     n = min(int(samples), MAX_SLOPE_SAMPLES)
+    if not torch.is_grad_enabled() or not (source.requires_grad or effect.requires_grad or (
+            isinstance(intensity, torch.Tensor) and intensity.requires_grad)):
+        return _slope_blur_nograd(source, effect, n, SLOPE_MODES[mode], intensity)
     gx, gy = gradient_wrap(gaussian_blur(to_gray(effect), PX))
     norm = torch.sqrt(1.0 + gx * gx + gy * gy)
     k = -param4d(intensity, source) * PX
@@ -74,6 +77,49 @@ def slope_blur(source: torch.Tensor, effect: torch.Tensor, *, samples: int = 8, 
         stack = torch.stack(taken, dim=0)
         out = stack.amax(dim=0) if kind == "max" else stack.amin(dim=0)
     return out.clamp(0.0, 1.0)
+
+
+def _slope_blur_nograd(source, effect, n, kind, intensity):
+    """``slope_blur`` without autograd: one padded copy of the source, the sample grids built
+    in place, the samples accumulated in place (same arithmetic as the differentiable path)."""
+    with torch.no_grad():
+        gx, gy = gradient_wrap(gaussian_blur(to_gray(effect), PX))
+        norm = gx * gx
+        norm.add_(1.0).add_(gy * gy).sqrt_()
+        k = -param4d(intensity, source) * PX
+        dx = (k * gx).div_(norm)
+        dy = (k * gy).div_(norm)
+        d = torch.stack([dx[:, 0], dy[:, 0]], dim=-1)                 # (B, H, W, 2)
+        u, v = _grid(source)
+        base = torch.stack([u[:, 0], v[:, 0]], dim=-1)                # (1, H, W, 2)
+        b = max(source.shape[0], d.shape[0])
+        h, w = source.shape[-2:]
+        padded = torch.nn.functional.pad(source, (1, 1, 1, 1), mode="circular")
+        if padded.shape[0] != b:
+            padded = padded.expand(b, -1, -1, -1)
+        scale, shift = _grid_affine(w, h, source.device, source.dtype)
+        out = source.expand(b, -1, -1, -1).clone() if kind == "blur" else None
+        acc = source.expand(b, -1, -1, -1) if kind != "blur" else None
+        for i in range(n):
+            grid = d * ((i + 1) / n)
+            grid.add_(base)
+            grid.sub_(torch.floor(grid))
+            grid = torch.addcmul(shift, grid, scale)
+            if grid.shape[0] != b:
+                grid = grid.expand(b, -1, -1, -1)
+            smp = torch.nn.functional.grid_sample(padded, grid, mode="bilinear", padding_mode="border",
+                                                  align_corners=True)
+            if kind == "blur":
+                out.add_(smp)
+            elif kind == "max":
+                acc = torch.maximum(acc, smp)
+            else:
+                acc = torch.minimum(acc, smp)
+        if kind == "blur":
+            out.div_(n + 1)
+        else:
+            out = acc.clone() if acc.data_ptr() == source.data_ptr() else acc
+        return out.clamp_(0.0, 1.0)
 
 
 def non_uniform_blur(source: torch.Tensor, effect: torch.Tensor, *, intensity=10.0, anisotropy=0.0,

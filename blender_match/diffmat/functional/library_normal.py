@@ -64,6 +64,25 @@ def height_to_normal_map(height: torch.Tensor, intensity=1.0, normal_format: int
     return _encode(torch.cat([nx, ny, torch.ones_like(nx)], dim=1))
 
 
+def _whiteout_nograd(a: torch.Tensor, b: torch.Tensor) -> torch.Tensor:
+    """``normal_combine`` quality 0 on encoded RGBA maps without autograd: the same arithmetic as
+    the differentiable path (and ``_encode``), on in-place buffers."""
+    with torch.no_grad():
+        n = max(a.shape[0], b.shape[0])
+        v = torch.empty((n, 3) + tuple(a.shape[-2:]), dtype=a.dtype, device=a.device)
+        torch.add(a[:, :2], b[:, :2], out=v[:, :2]).mul_(2.0).sub_(2.0)
+        za = (a[:, 2:3] * 2.0).sub_(1.0).clamp_min_(0.0)
+        zb = (b[:, 2:3] * 2.0).sub_(1.0).clamp_min_(0.0)
+        torch.mul(za, zb, out=v[:, 2:3])
+        del za, zb
+        half_inv = (v * v).sum(dim=1, keepdim=True).add_(1e-12).rsqrt_().mul_(0.5)
+        out = torch.empty((n, 4) + tuple(a.shape[-2:]), dtype=a.dtype, device=a.device)
+        torch.addcmul(v.new_full((), 0.5), v, half_inv, out=out[:, :3])
+        out[:, :3].clamp_(0.0, 1.0)
+        out[:, 3:] = 1.0
+        return out
+
+
 def normal_combine(input: torch.Tensor, input_1: torch.Tensor, *, blend_quality: int = 0):
     """Normal Combine: details of ``input_1`` on top of ``input``. ``blend_quality`` 0 (fast):
     whiteout blending (xy added, z multiplied); 1 (high): reoriented normal mapping. A flat
@@ -72,6 +91,8 @@ def normal_combine(input: torch.Tensor, input_1: torch.Tensor, *, blend_quality:
         raise DiffMatError(f"normal_combine.blend_quality: unknown value {blend_quality!r}; expected 0 or 1")
     if blend_quality == 0 and input.shape[1] == COLOR and input_1.shape[1] == COLOR:
         # whiteout on the encoded maps directly: xy = (2 a - 1) + (2 b - 1), z = a_z b_z (z >= 0)
+        if not torch.is_grad_enabled() or not (input.requires_grad or input_1.requires_grad):
+            return _whiteout_nograd(input, input_1)
         xy = (input[:, :2] + input_1[:, :2]) * 2.0 - 2.0
         z = (input[:, 2:3] * 2.0 - 1.0).clamp_min(0.0) * (input_1[:, 2:3] * 2.0 - 1.0).clamp_min(0.0)
         return _encode(torch.cat([xy, z], dim=1))
@@ -250,6 +271,16 @@ def edge_detect(input: torch.Tensor, *, edge_width=2.0, edge_roundness=4.0, tole
     size = x.shape[-1]
     sigma = torch.sqrt((param4d(edge_width, x) * 0.5 * PX) ** 2 + (0.5 / size) ** 2)
     gu, gv = gradient_wrap(gaussian_blur(x, sigma))
+    tol = param4d(tolerance, x)
+    if (not torch.is_grad_enabled() or not (x.requires_grad or sigma.requires_grad or tol.requires_grad)) \
+            and max(sigma.shape[0], tol.shape[0]) <= gu.shape[0]:
+        with torch.no_grad():   # the same arithmetic on in-place buffers
+            e = (gu * gu).add_(gv * gv).add_(1e-12).sqrt_()
+            del gu, gv
+            e.mul_(torch.sqrt(sigma ** 2 + (1.0 / size) ** 2)).mul_(math.sqrt(2 * math.pi))
+            e.sub_(tol).div_((1 - tol).clamp_min(1e-3)).mul_(2.0).clamp_(0.0, 1.0)
+            out = gaussian_blur(e, param4d(edge_roundness, x).abs() * 0.5 * PX).clamp_(0.0, 1.0)
+            return out.neg_().add_(1.0) if _bool(invert, "edge_detect.invert") else out
     # a unit step blurred by sigma peaks at 1 / (sigma sqrt(2 pi)); central differences widen it
     e = torch.sqrt(gu * gu + gv * gv + 1e-12) * torch.sqrt(sigma ** 2 + (1.0 / size) ** 2) * math.sqrt(2 * math.pi)
     tol = param4d(tolerance, x)

@@ -111,7 +111,7 @@ def _axis(res: int, n: int, device, dtype, interp: str, offset: float = 0.0):
 # operators (averaged over a pixel's sub-samples): no supersampled image is ever built. Coarse axes
 # are applied as dense matrix products (one GEMM for all the coarse terms of a fractal sum); fine
 # axes as a few row gathers ("taps").
-_DENSE_MAX = 48           # x axes up to this many cells are dense products, finer ones taps
+_DENSE_MAX = 128          # x axes up to this many cells are dense products, finer ones taps
 _BLOCK = 32               # pixel rows a block of the banded y product
 _AXIS_CACHE: dict = {}
 _PHASE_CACHE: dict = {}
@@ -543,10 +543,14 @@ def blend_scales(scale, render: Callable[[int, torch.Tensor], torch.Tensor], *, 
         idx = torch.tensor(rows, dtype=torch.long)
         img = render(k, idx)
         renders[k] = {b: img[i if img.shape[0] > 1 else 0] for i, b in enumerate(rows)}
-    lo = torch.stack([renders[int(k0[b])][b] for b in range(nb)])
+    def gather(shift):
+        if nb == 1:
+            return renders[int(k0[0]) + shift][0][None]     # a view: no copy of the image
+        return torch.stack([renders[int(k0[b]) + shift][b] for b in range(nb)])
+    lo = gather(0)
     if not need_upper:
         return lo
-    hi = torch.stack([renders[int(k0[b]) + 1][b] for b in range(nb)])
+    hi = gather(1)
     t = t.reshape(-1, 1, 1, 1)
     inv = torch.rsqrt((1 - t) ** 2 + t ** 2)
     return torch.addcmul(lo * ((1 - t) * inv), hi, t * inv)

@@ -206,13 +206,17 @@ def hsl(input1: torch.Tensor, *, hue=0.5, saturation=0.5, luminosity=0.5) -> tor
     direction of each slider, not its exact curve.
     """
     x = check_image(input1, "hsl.input1", (COLOR,))
-    h, s, l = _rgb_to_hsl(x[:, :3])
     dh = param4d(hue, x)
     ds = param4d(saturation, x) * 2 - 1
     dl = param4d(luminosity, x) * 2 - 1
     for name, t in (("hue", dh), ("saturation", ds), ("luminosity", dl)):
         if t.shape[1] != 1:
             raise DiffMatError(f"hsl.{name}: expected 1 component, got {t.shape[1]}")
+    if (not torch.is_grad_enabled() or not (x.requires_grad or dh.requires_grad or ds.requires_grad
+                                              or dl.requires_grad)) \
+            and max(dh.shape[0], ds.shape[0], dl.shape[0]) <= x.shape[0]:
+        return _hsl_nograd(x, dh, ds, dl)
+    h, s, l = _rgb_to_hsl(x[:, :3])
     h = h + dh - 0.5
     # ds <= 0: s (1 + ds); above: s (1 + (1 - s) ds). dl <= 0: l (1 + dl); above: l + (1 - l) dl.
     # The branch is chosen per batch item (a (B, 1, 1, 1) mask), not per pixel.
@@ -222,6 +226,62 @@ def hsl(input1: torch.Tensor, *, hue=0.5, saturation=0.5, luminosity=0.5) -> tor
     l = (l + dl * (l + up_l * (1 - 2 * l))).clamp(0.0, 1.0)
     rgb = _hsl_to_rgb(h, s, l).clamp(0.0, 1.0)
     return torch.cat([rgb, x[:, 3:].expand(rgb.shape[0], -1, -1, -1)], dim=1)
+
+
+def _hsl_nograd(x, dh, ds, dl):
+    """``hsl`` without autograd: the same arithmetic as ``_rgb_to_hsl`` / ``hsl`` /
+    ``_hsl_to_rgb``, op for op, on in-place temporaries, written straight into the output."""
+    with torch.no_grad():
+        rgb = x[:, :3]
+        r, g, b = rgb[:, 0:1], rgb[:, 1:2], rgb[:, 2:3]
+        mx = rgb.amax(dim=1, keepdim=True)
+        mn = rgb.amin(dim=1, keepdim=True)
+        d = mx - mn
+        s2 = mn.add_(mx)                                   # 2 l (mx + mn)
+        light = s2 * 0.5
+        colour = _step(d - 1e-7)
+        inv = (1.0 - colour).add_(d).reciprocal_()
+        t = (s2 - 1.0).abs_().neg_().add_(1.0).clamp_min_(1e-7)
+        sat = d.div_(t).clamp_(0.0, 1.0).mul_(colour)
+        del t, s2
+        is_r = _step(r - mx)
+        not_r = (1.0 - is_r)
+        is_g = _step(g - mx).mul_(not_r)
+        is_b = not_r.sub_(is_g)
+        del mx, not_r
+        hr = (g - b).mul_(inv)
+        hr.add_(_step(hr).neg_().add_(1.0).mul_(6.0))
+        hue = hr.mul_(is_r)
+        del is_r
+        t = (b - r).mul_(is_g)
+        t.add_((r - g).mul_(is_b))
+        hue.add_(t.mul_(inv))
+        del t, inv
+        hue.add_(is_g.mul_(2.0).add_(is_b.mul_(4.0)))
+        del is_g, is_b
+        hue.mul_(colour.mul_(1.0 / 6.0))
+        # adjustments (hsl)
+        h = hue.add_(dh).sub_(0.5)
+        up_s = (ds > 0).to(ds.dtype)
+        up_l = (dl > 0).to(dl.dtype)
+        s = sat.mul_((sat * up_s).neg_().add_(1.0).mul_(ds).add_(1.0)).clamp_(0.0, 1.0)
+        l = light
+        l.add_((l * 2).neg_().add_(1.0).mul_(up_l).add_(l).mul_(dl)).clamp_(0.0, 1.0)
+        # back to RGB (_hsl_to_rgb)
+        a = torch.minimum(l, 1 - l).mul_(s)
+        key = (h.device, h.dtype)
+        off = _HSL_OFFSETS.get(key)
+        if off is None:
+            off = _HSL_OFFSETS[key] = torch.tensor([0.0, 8.0, 4.0], device=h.device, dtype=h.dtype).reshape(1, 3, 1, 1)
+        k = torch.addcmul(off, h, h.new_full((), 12.0))
+        k.sub_(torch.floor(k * (1.0 / 12.0)).mul_(12.0))
+        m = torch.minimum(k - 3, k.neg_().add_(9.0)).clamp_(-1.0, 1.0)
+        n = h.shape[0]
+        out = torch.empty((n, 4) + tuple(x.shape[-2:]), dtype=x.dtype, device=x.device)
+        torch.addcmul(l, a, m, value=-1.0, out=out[:, :3])
+        out[:, :3].clamp_(0.0, 1.0)
+        out[:, 3:] = x[:, 3:]
+        return out
 
 
 # ---------------------------------------------------------------------------------------------
