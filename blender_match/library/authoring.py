@@ -25,3 +25,15 @@ def constant_map(g: SbsGraph, name: str, value: float) -> str:
     g.add(name, "uniform", colorswitch=False, outputcolor=color)
     g.bind(name, "outputcolor", const(color).graph())
     return name
+
+
+MATERIAL_MAPS = ("basecolor", "normal", "roughness", "metallic", "height")
+
+
+def set_material_outputs(g: SbsGraph, ambient_occlusion: str | None = None):
+    """Name the five material maps after the nodes of the same names (and optionally the ambient
+    occlusion node)."""
+    for usage in MATERIAL_MAPS:
+        g.set_output(usage, usage)
+    if ambient_occlusion:
+        g.set_output("ambientocclusion", ambient_occlusion)

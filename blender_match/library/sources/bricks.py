@@ -24,7 +24,7 @@ Exposed parameters
 """
 from __future__ import annotations
 
-from blender_match.library.authoring import ADD_SUB, COPY, MAX, MULTIPLY, OVERLAY, SOFT_LIGHT, SUBTRACT, constant_map, gradient_keys
+from blender_match.library.authoring import ADD_SUB, COPY, MAX, MULTIPLY, OVERLAY, SOFT_LIGHT, SUBTRACT, constant_map, gradient_keys, set_material_outputs
 from blender_match.library.expressions import get, lerp, vector
 from blender_match.translator.runtime import SbsGraph
 
@@ -112,9 +112,7 @@ def build() -> SbsGraph:
           blendingmode=COPY, opacitymult=1.0)
     constant_map(g, "metallic", 0.0)
 
-    for usage in ("basecolor", "normal", "roughness", "metallic", "height"):
-        g.set_output(usage, usage)
-    g.set_output("ambientocclusion", "ao")
+    set_material_outputs(g, ambient_occlusion="ao")
     return g
 
 

@@ -23,7 +23,7 @@ Exposed parameters
 """
 from __future__ import annotations
 
-from blender_match.library.authoring import ADD, ADD_SUB, COPY, MAX, MULTIPLY, OVERLAY, SOFT_LIGHT, constant_map, gradient_keys
+from blender_match.library.authoring import ADD, ADD_SUB, COPY, MAX, MULTIPLY, OVERLAY, SOFT_LIGHT, constant_map, gradient_keys, set_material_outputs
 from blender_match.library.expressions import get, lerp, vector
 from blender_match.translator.runtime import SbsGraph
 
@@ -122,9 +122,7 @@ def build() -> SbsGraph:
           blendingmode=MAX, opacitymult=0.9)
     constant_map(g, "metallic", 0.0)
 
-    for usage in ("basecolor", "normal", "roughness", "metallic", "height"):
-        g.set_output(usage, usage)
-    g.set_output("ambientocclusion", "ao")
+    set_material_outputs(g, ambient_occlusion="ao")
     return g
 
 

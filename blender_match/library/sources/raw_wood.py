@@ -24,7 +24,7 @@ Exposed parameters
 """
 from __future__ import annotations
 
-from blender_match.library.authoring import ADD, ADD_SUB, COPY, MULTIPLY, SOFT_LIGHT, SUBTRACT, constant_map, gradient_keys
+from blender_match.library.authoring import ADD, ADD_SUB, COPY, MULTIPLY, SOFT_LIGHT, SUBTRACT, constant_map, gradient_keys, set_material_outputs
 from blender_match.library.expressions import const, get, lerp, vector
 from blender_match.translator.runtime import SbsGraph
 
@@ -118,8 +118,7 @@ def build() -> SbsGraph:
           blendingmode=SUBTRACT, opacitymult=0.15)
     constant_map(g, "metallic", 0.0)
 
-    for usage in ("basecolor", "normal", "roughness", "metallic", "height"):
-        g.set_output(usage, usage)
+    set_material_outputs(g)
     return g
 
 
