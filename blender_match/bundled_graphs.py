@@ -77,7 +77,7 @@ def worn_stone_tiles() -> MaterialGraph:
     g.add("roughness", "levels", {"input1": "rough_color"}, leveloutlow=(0.35, 0.35, 0.35, 0.0),
           levelouthigh=(0.9, 0.9, 0.9, 1.0))
     # metallic: a few mica flecks
-    g.add("flecks", "histogram_scan", {"input_1": "spots"}, position=0.9, contrast=0.9)
+    g.add("flecks", "histogram_scan", {"input_1": "spots"}, position=0.01, contrast=0.95)
     g.add("flecks_soft", "blur", {"input1": "flecks"}, intensity=0.5)
     g.add("metallic", "levels", {"input1": "flecks_soft"}, levelouthigh=(0.3, 0.3, 0.3, 1.0))
     for usage, node in (("basecolor", "basecolor"), ("normal", "normal_mix"), ("roughness", "roughness"),
