@@ -8,7 +8,7 @@ import torch
 from blender_match.diffmat import get_spec
 from blender_match.diffmat.nodes import has_spec
 from blender_match.translator import TranslatorError, translate
-from blender_match.translator import sbs_writer as W
+import sbs_snippets as W
 
 SIZE = 32
 

@@ -9,7 +9,7 @@ import torch
 
 from blender_match.cli import main
 from blender_match.translator import translate
-from blender_match.translator import sbs_writer as W
+import sbs_snippets as W
 
 SIZE = 32
 

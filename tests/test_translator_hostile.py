@@ -7,7 +7,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from blender_match.translator import TranslatorError, translate
-from blender_match.translator import sbs_writer as W
+import sbs_snippets as W
 
 
 def _valid():

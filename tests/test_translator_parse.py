@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import pytest
 
-from blender_match.translator import sbs_writer as W
+import sbs_snippets as W
 from blender_match.translator.parse import load_package
 from blender_match.translator.values import BadValue, decode_text
 from blender_match.translator.xml_safety import parse_bytes

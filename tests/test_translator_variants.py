@@ -11,7 +11,7 @@ import torch
 from blender_match.diffmat import get_spec
 from blender_match.translator import translate
 from blender_match.translator import aliases
-from blender_match.translator import sbs_writer as W
+import sbs_snippets as W
 
 SIZE = 32
 

@@ -1,4 +1,4 @@
-"""Writing small .sbs documents by hand (for tests and examples): each helper returns XML text
+"""Writing small .sbs documents by hand for the translator tests: each helper returns XML text
 with every value escaped. Covers the constructs the translator reads; not a general writer."""
 from __future__ import annotations
 
