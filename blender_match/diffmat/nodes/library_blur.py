@@ -5,12 +5,18 @@ from .spec import Input, NodeSpec, Param
 
 NA = "non_atomic"
 
+
+def _gray_and_color(gray: str, color: str, fn, primary: str, doc: str, *, inputs=(), aliases=(), **spec):
+    """Register a library node's grayscale and colour variants: one op, one parameter list, the
+    primary input gray in the first and colour in the second (aliases go to the grayscale one)."""
+    register(NodeSpec(gray, NA, fn, inputs=(Input(primary, "gray"), *inputs), aliases=aliases,
+                      doc=f"{doc} (grayscale).", **spec))
+    register(NodeSpec(color, NA, fn, inputs=(Input(primary, "color"), *inputs), doc=f"{doc} (colour).", **spec))
+
 _BLUR_HQ = (Param("intensity", 10.0, 0.0, 16.0, doc="256-px pixels (sigma = intensity / 2)"),
             Param("quality", 0.0, optimizable=False, doc="sample quality (no effect: exact FFT blur)"))
-register(NodeSpec("blur_hq_grayscale", NA, F.blur_hq, inputs=(Input("source", "gray"),),
-                  outputs=("blur_hq",), params=_BLUR_HQ, doc="Blur HQ (grayscale): Gaussian blur."))
-register(NodeSpec("blur_hq", NA, F.blur_hq, inputs=(Input("source", "color"),),
-                  outputs=("blur_hq",), params=_BLUR_HQ, doc="Blur HQ (colour): Gaussian blur."))
+_gray_and_color("blur_hq_grayscale", "blur_hq", F.blur_hq, "source", "Blur HQ: Gaussian blur",
+                outputs=("blur_hq",), params=_BLUR_HQ)
 
 register(NodeSpec(
     "highpass_grayscale", NA, F.highpass, inputs=(Input("source"),), outputs=("highpass",),
@@ -20,13 +26,9 @@ register(NodeSpec(
 _SLOPE = (Param("samples", 8, 1, 32, kind="int", doc="at most 4 are taken"),
           Param("mode", 1, kind="enum", choices=(0, 1, 5, 6), doc="0/1 blur, 5 max, 6 min"),
           Param("intensity", 10.0, -16.0, 16.0, doc="256-px pixels along the slope"))
-register(NodeSpec("slope_blur_grayscale", NA, F.slope_blur,
-                  inputs=(Input("source", "gray"), Input("effect", "gray")), outputs=("slope_blur",),
-                  params=_SLOPE, aliases=("slope_blur_grayscale_2",),
-                  doc="Slope Blur (grayscale): smear along the slope of a height map."))
-register(NodeSpec("slope_blur", NA, F.slope_blur,
-                  inputs=(Input("source", "color"), Input("effect", "gray")), outputs=("slope_blur",),
-                  params=_SLOPE, doc="Slope Blur (colour)."))
+_gray_and_color("slope_blur_grayscale", "slope_blur", F.slope_blur, "source",
+                "Slope Blur: smear along the slope of a height map", inputs=(Input("effect", "gray"),),
+                aliases=("slope_blur_grayscale_2",), outputs=("slope_blur",), params=_SLOPE)
 
 register(NodeSpec(
     "non_uniform_blur_grayscale", NA, F.non_uniform_blur,
@@ -38,18 +40,10 @@ register(NodeSpec(
     aliases=("non_uniform_blur",),
     doc="Non-Uniform Blur: blur radius driven by an effect map."))
 
-register(NodeSpec(
-    "vector_warp_grayscale", NA, F.vector_warp,
-    inputs=(Input("input", "gray"), Input("vector_map", "color")),
-    params=(Param("intensity", 1.0, 0.0, 1.0, doc="image widths per unit vector"),
-            Param("vector_format", 0, kind="enum", choices=(0, 1), doc="0 DirectX, 1 OpenGL")),
-    doc="Vector Warp: displacement by an RG vector map."))
-register(NodeSpec(
-    "vector_warp", NA, F.vector_warp,
-    inputs=(Input("input", "color"), Input("vector_map", "color")),
-    params=(Param("intensity", 1.0, 0.0, 1.0, doc="image widths per unit vector"),
-            Param("vector_format", 0, kind="enum", choices=(0, 1), doc="0 DirectX, 1 OpenGL")),
-    doc="Vector Warp (colour)."))
+_gray_and_color("vector_warp_grayscale", "vector_warp", F.vector_warp, "input",
+                "Vector Warp: displacement by an RG vector map", inputs=(Input("vector_map", "color"),),
+                params=(Param("intensity", 1.0, 0.0, 1.0, doc="image widths per unit vector"),
+                        Param("vector_format", 0, kind="enum", choices=(0, 1), doc="0 DirectX, 1 OpenGL")))
 
 register(NodeSpec(
     "vector_morph_grayscale", NA, F.vector_morph,
@@ -74,26 +68,18 @@ _SAFE = (Param("tile", 1, 1, 64, kind="int"),
          Param("symmetry", 0, kind="enum", choices=(0, 1, 2, 3), doc="none, X, Y, X+Y"),
          Param("mipmap_mode", 0, kind="enum", choices=(0, 1)),
          Param("mipmap_level", 0, 0, 12, kind="int"))
-register(NodeSpec("safe_transform_grayscale", NA, F.safe_transform, inputs=(Input("input", "gray"),),
-                  params=_SAFE, context=("seed",), doc="Safe Transform (grayscale)."))
-register(NodeSpec("safe_transform", NA, F.safe_transform, inputs=(Input("input", "color"),),
-                  params=_SAFE, context=("seed",), doc="Safe Transform (colour)."))
+_gray_and_color("safe_transform_grayscale", "safe_transform", F.safe_transform, "input", "Safe Transform",
+                params=_SAFE, context=("seed",))
 
 _PATCH = (Param("octave", 3, 0, 8, kind="int", doc="2^octave cells per side"),
           Param("size", 1.0, 0.1, 4.0, doc="patch scale"),
           Param("disorder", 0.0), Param("mask_size", 0.5), Param("mask_precision", 0.5),
           Param("mask_warping", 0.0), Param("rotation", 0.0, doc="turns"),
           Param("rotation_variation", 0.0))
-register(NodeSpec("make_it_tile_patch_grayscale", NA, F.make_it_tile_patch, inputs=(Input("source", "gray"),),
-                  outputs=("make_it_tile_patch",), params=_PATCH, context=("seed",),
-                  doc="Make It Tile Patch (grayscale)."))
-register(NodeSpec("make_it_tile_patch", NA, F.make_it_tile_patch, inputs=(Input("source", "color"),),
-                  outputs=("make_it_tile_patch",), params=_PATCH, context=("seed",),
-                  doc="Make It Tile Patch (colour)."))
+_gray_and_color("make_it_tile_patch_grayscale", "make_it_tile_patch", F.make_it_tile_patch, "source",
+                "Make It Tile Patch", outputs=("make_it_tile_patch",), params=_PATCH, context=("seed",))
 
 _PHOTO = tuple(Param(f"{name}_{axis}", 0.5) for axis in ("h", "v")
                for name in ("mask_warping", "mask_size", "mask_precision"))
-register(NodeSpec("make_it_tile_photo_grayscale", NA, F.make_it_tile_photo, inputs=(Input("source", "gray"),),
-                  outputs=("make_it_tile_photo",), params=_PHOTO, doc="Make It Tile Photo (grayscale)."))
-register(NodeSpec("make_it_tile_photo", NA, F.make_it_tile_photo, inputs=(Input("source", "color"),),
-                  outputs=("make_it_tile_photo",), params=_PHOTO, doc="Make It Tile Photo (colour)."))
+_gray_and_color("make_it_tile_photo_grayscale", "make_it_tile_photo", F.make_it_tile_photo, "source",
+                "Make It Tile Photo", outputs=("make_it_tile_photo",), params=_PHOTO)

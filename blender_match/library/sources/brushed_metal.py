@@ -12,6 +12,7 @@ Exposed parameters: ``metal_color`` (sRGB tint), ``roughness``, ``brush_strength
 brushing in colour, roughness and relief), ``scratches`` (scratch visibility), ``smudges``
 (fingerprint amount), ``normal_intensity``.
 """
+from blender_match.library.authoring import set_material_outputs
 from blender_match.library.expressions import const, get, gray4, lerp, vector
 from blender_match.translator.runtime import SbsGraph
 
@@ -96,11 +97,7 @@ def build() -> SbsGraph:
 
     g.add("metallic", "uniform", colorswitch=False, outputcolor=[1.0, 1.0, 1.0, 1.0])
 
-    g.set_output("basecolor", "basecolor")
-    g.set_output("normal", "normal")
-    g.set_output("roughness", "roughness")
-    g.set_output("metallic", "metallic")
-    g.set_output("height", "height")
+    set_material_outputs(g)
     return g
 
 

@@ -11,6 +11,7 @@ Exposed parameters: ``rust_amount``, ``rust_color`` (sRGB tint multiplied with t
 gradient), ``rust_roughness``, ``metal_color`` (sRGB), ``metal_roughness``, ``pitting``,
 ``normal_intensity``.
 """
+from blender_match.library.authoring import set_material_outputs
 from blender_match.library.expressions import get, vector
 from blender_match.translator.runtime import SbsGraph
 
@@ -91,11 +92,7 @@ def build() -> SbsGraph:
     g.add("normal", "normal", {"input1": "height"})
     g.bind("normal", "intensity", get("normal_intensity").graph())
 
-    g.set_output("basecolor", "basecolor")
-    g.set_output("normal", "normal")
-    g.set_output("roughness", "roughness")
-    g.set_output("metallic", "metallic")
-    g.set_output("height", "height")
+    set_material_outputs(g)
     return g
 
 

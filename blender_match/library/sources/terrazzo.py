@@ -11,6 +11,7 @@ Exposed parameters: ``matrix_color`` (sRGB), ``chip_density`` (how many chips sh
 ``chip_contrast`` (colour strength of the chips), ``roughness``, ``pores`` (amount of pores),
 ``normal_intensity``.
 """
+from blender_match.library.authoring import set_material_outputs
 from blender_match.library.expressions import get, gray4, vector
 from blender_match.translator.runtime import SbsGraph
 
@@ -88,11 +89,7 @@ def build() -> SbsGraph:
     g.add("normal", "normal", {"input1": "height"})
     g.bind("normal", "intensity", get("normal_intensity").graph())
 
-    g.set_output("basecolor", "basecolor")
-    g.set_output("normal", "normal")
-    g.set_output("roughness", "roughness")
-    g.set_output("metallic", "metallic")
-    g.set_output("height", "height")
+    set_material_outputs(g)
     return g
 
 
