@@ -128,11 +128,12 @@ class TextureDescriptor(nn.Module):
         self.scales = tuple(scales)
         self.vgg = VGG19Features(weights)
 
-    def forward(self, image: torch.Tensor) -> torch.Tensor:
+    def forward(self, image: torch.Tensor, scales: tuple[int, ...] | None = None) -> torch.Tensor:
+        """The descriptor of ``image`` at ``scales`` (default: the descriptor's own)."""
         if image.dim() != 4 or image.shape[1] != 3:
             raise DiffMatError(f"texture descriptor: expected (N, 3, H, W) RGB images, got {tuple(image.shape)}")
         parts = []
-        for s in self.scales:
+        for s in scales or self.scales:
             x = image if image.shape[-1] == s else F.interpolate(image, size=(s, s), mode="bilinear",
                                                                  antialias=True, align_corners=False)
             parts.extend(gram(f).flatten(1) for f in self.vgg(x))

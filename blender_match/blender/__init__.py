@@ -1,0 +1,1 @@
+"""bpy-side helpers of the add-on (imported only inside Blender)."""

@@ -1,0 +1,233 @@
+"""Turn a match result folder into a Blender material, and put it on an object.
+
+A result folder (written by the matching pipeline) holds the maps as PNGs and a ``report.json``
+whose ``"maps"`` says, per usage, the file and whether the map is *flat* (every pixel the same;
+its value is given). ``build_material`` makes a NEW material every time — it never reuses or
+changes an existing material or image, so rebuilding cannot destroy a user's edits:
+
+    Texture Coordinate (UV) -> Mapping (Scale = tiling) -> Image Texture per non-flat map
+        base colour (sRGB)             -> Principled "Base Color"
+        roughness, metallic (Non-Color) -> Principled "Roughness", "Metallic"
+        normal (Non-Color, OpenGL = Blender's convention) -> Normal Map (tangent) -> "Normal"
+        height (Non-Color) -> Displacement (scale BUMP_SCALE) -> Material Output "Displacement"
+    Principled BSDF -> Material Output
+
+A flat map becomes the socket's default value instead of a texture (a flat normal or height map
+adds nothing). Height drives the Displacement output with ``displacement_method`` 'BUMP': bump
+works on any mesh in EEVEE and Cycles, whereas true displacement needs a finely subdivided mesh
+and Cycles; users who have one switch the method themselves. Ambient occlusion is left out: the
+Principled BSDF has no input for it and renderers compute their own.
+
+What re-rendering needs without the photo (graph, fitted parameters as JSON text, size, loss,
+folder) is stored on the material as the ``"blender_match"`` custom property.
+
+bpy is imported inside the functions, so this module imports without Blender; ``read_report``
+and ``srgb_to_linear`` are shared with ``export_presets``.
+"""
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+
+REPORT_FILE = "report.json"
+PARAMS_FILE = "params.json"
+PROPERTY = "blender_match"
+BUMP_SCALE = 0.02  # metres of relief for the full 0..1 height range: a subtle bump, not a cliff
+
+# usage -> (node label, colour space, Principled input it feeds directly or None), in the order
+# the image nodes are stacked top to bottom.
+IMAGE_MAPS = {
+    "basecolor": ("Base Color", "sRGB", "Base Color"),
+    "roughness": ("Roughness", "Non-Color", "Roughness"),
+    "metallic": ("Metallic", "Non-Color", "Metallic"),
+    "normal": ("Normal", "Non-Color", None),
+    "height": ("Height", "Non-Color", None),
+}
+
+# Node columns, left to right (x in node-editor units), and the vertical step between images.
+_X = {"coords": -1500, "mapping": -1300, "images": -1000, "converters": -650, "shader": -400,
+      "output": 0}
+_ROW = -300
+
+
+class ResultFolderError(ValueError):
+    """A result folder that cannot be used (names the folder or file and the problem)."""
+
+
+def srgb_to_linear(values):
+    """sRGB-encoded values in [0, 1] -> linear (IEC 61966-2-1). Blender's colour sockets and
+    OpenEXR files hold linear colour, while the base-colour PNG holds sRGB-encoded values."""
+    v = np.clip(np.asarray(values, dtype=np.float32), 0.0, 1.0)
+    return np.where(v <= 0.04045, v / 12.92, ((v + 0.055) / 1.055) ** 2.4).astype(np.float32)
+
+
+def read_report(result_dir) -> dict:
+    """The folder's report.json as a dict with a ``"maps"`` object."""
+    path = Path(result_dir) / REPORT_FILE
+    if not path.is_file():
+        raise ResultFolderError(f"{result_dir}: no {REPORT_FILE} (not a blender_match result folder)")
+    try:
+        report = json.loads(path.read_text(encoding="utf-8"))
+    except (OSError, UnicodeDecodeError, json.JSONDecodeError) as exc:
+        raise ResultFolderError(f"{path}: unreadable ({exc})") from None
+    if not isinstance(report, dict) or not isinstance(report.get("maps"), dict):
+        raise ResultFolderError(f'{path}: no "maps" object')
+    return report
+
+
+def map_path(result_dir, report: dict, usage: str) -> Path:
+    """The existing file of map ``usage`` listed in the report."""
+    entry = report["maps"].get(usage)
+    file = entry.get("file") if isinstance(entry, dict) else None
+    if not isinstance(file, str):
+        raise ResultFolderError(f'{Path(result_dir) / REPORT_FILE}: no file for map "{usage}"')
+    path = Path(result_dir) / file
+    if not path.is_file():
+        raise ResultFolderError(f"{path}: missing (listed in {REPORT_FILE})")
+    return path
+
+
+def graph_name(report: dict, result_dir) -> str:
+    """The fitted graph's name ("marble"; a .sbs path gives its stem), else the folder's name."""
+    graph = report.get("graph")
+    if isinstance(graph, str) and graph:
+        name = Path(graph).name
+        return name[:-4] if name.lower().endswith(".sbs") else name
+    return Path(result_dir).resolve().name
+
+
+def build_material(result_dir, name=None, pack=False, tiling=1.0):
+    """A new material built from the result folder (see the module docstring); returns it.
+
+    ``name`` defaults to "Match <graph>" (Blender suffixes duplicates); images are named
+    "<name> <usage>". ``pack`` packs the images into the .blend. ``tiling`` repeats the texture
+    that many times per UV unit. Everything is checked before any datablock is created.
+    """
+    import bpy
+
+    if not tiling > 0:
+        raise ValueError(f"tiling must be positive, not {tiling}")
+    result_dir = Path(result_dir).resolve()
+    report = read_report(result_dir)
+    params = _read_params(result_dir)
+    maps = report["maps"]
+    flat = {u: maps[u]["flat"] for u in IMAGE_MAPS
+            if isinstance(maps.get(u), dict) and maps[u].get("flat") is not None}
+    files = {u: map_path(result_dir, report, u) for u in IMAGE_MAPS if u in maps and u not in flat}
+    base_name = name or f"Match {graph_name(report, result_dir)}"
+
+    material = bpy.data.materials.new(base_name)
+    if material.node_tree is None:  # Blender < 5.0 creates the node tree only on request
+        material.use_nodes = True
+    material.displacement_method = "BUMP"
+    tree = material.node_tree
+    tree.nodes.clear()
+    output = _node(tree, "ShaderNodeOutputMaterial", "Material Output", _X["output"], 0)
+    shader = _node(tree, "ShaderNodeBsdfPrincipled", "Principled BSDF", _X["shader"], 0)
+    tree.links.new(shader.outputs["BSDF"], output.inputs["Surface"])
+    _set_flat_values(shader, flat)
+    if files:
+        vector = _mapping(tree, tiling, y=_ROW * (len(files) - 1) / 2)
+        for row, (usage, path) in enumerate(files.items()):
+            image = _load_image(bpy, path, f"{base_name} {usage}", IMAGE_MAPS[usage][1], pack)
+            color = _image_node(tree, usage, image, vector, y=_ROW * row)
+            _wire(tree, usage, color, shader, output, y=_ROW * row)
+    material[PROPERTY] = _record(report, params, result_dir)
+    return material
+
+
+def assign_material(obj, material) -> bool:
+    """Put ``material`` in ``obj``'s active material slot (the slot's previous material stays in
+    the file), or in a new slot when it has none. Returns False, assigning nothing, for objects
+    that cannot hold materials (empties, cameras, lights)."""
+    if obj is None or not hasattr(obj.data, "materials"):
+        return False
+    if obj.material_slots:
+        obj.material_slots[obj.active_material_index].material = material
+    else:
+        obj.data.materials.append(material)
+    return True
+
+
+def _read_params(result_dir: Path) -> str:
+    """params.json's text (checked to be JSON): the fitted parameters that re-rendering needs."""
+    path = result_dir / PARAMS_FILE
+    try:
+        text = path.read_text(encoding="utf-8")
+        json.loads(text)
+    except FileNotFoundError:
+        raise ResultFolderError(f"{path}: missing (the fitted parameters)") from None
+    except (OSError, UnicodeDecodeError, json.JSONDecodeError) as exc:
+        raise ResultFolderError(f"{path}: unreadable ({exc})") from None
+    return text
+
+
+def _record(report: dict, params: str, result_dir: Path) -> dict:
+    """The custom property's value; None (which an IDProperty cannot hold) is left out."""
+    record = {"graph": report.get("graph"), "params": params, "size": report.get("size"),
+              "loss": report.get("loss_final"), "result_dir": str(result_dir)}
+    return {key: value for key, value in record.items() if value is not None}
+
+
+def _node(tree, kind: str, label: str, x: float, y: float):
+    node = tree.nodes.new(kind)
+    node.name = node.label = label
+    node.location = (x, y)
+    return node
+
+
+def _mapping(tree, tiling: float, y: float):
+    """UV coordinates scaled by ``tiling``: the Vector every image node reads."""
+    coords = _node(tree, "ShaderNodeTexCoord", "Texture Coordinate", _X["coords"], y)
+    mapping = _node(tree, "ShaderNodeMapping", "Tiling", _X["mapping"], y)
+    mapping.inputs["Scale"].default_value = (tiling, tiling, 1.0)
+    tree.links.new(coords.outputs["UV"], mapping.inputs["Vector"])
+    return mapping.outputs["Vector"]
+
+
+def _load_image(bpy, path: Path, name: str, colorspace: str, pack: bool):
+    """A new image datablock for ``path`` (never an existing one, which the user may have edited)."""
+    image = bpy.data.images.load(str(path), check_existing=False)
+    image.name = name
+    image.colorspace_settings.name = colorspace
+    if pack:
+        image.pack()
+    return image
+
+
+def _image_node(tree, usage: str, image, vector, y: float):
+    node = _node(tree, "ShaderNodeTexImage", IMAGE_MAPS[usage][0], _X["images"], y)
+    node.image = image
+    tree.links.new(vector, node.inputs["Vector"])
+    return node.outputs["Color"]
+
+
+def _wire(tree, usage: str, color, shader, output, y: float):
+    """Connect an image's Color output to where its map acts."""
+    target = IMAGE_MAPS[usage][2]
+    if target:
+        tree.links.new(color, shader.inputs[target])
+    elif usage == "normal":
+        normal_map = _node(tree, "ShaderNodeNormalMap", "Normal Map", _X["converters"], y)
+        normal_map.space = "TANGENT"
+        tree.links.new(color, normal_map.inputs["Color"])
+        tree.links.new(normal_map.outputs["Normal"], shader.inputs["Normal"])
+    else:
+        displacement = _node(tree, "ShaderNodeDisplacement", "Displacement", _X["converters"], y)
+        displacement.inputs["Midlevel"].default_value = 0.5
+        displacement.inputs["Scale"].default_value = BUMP_SCALE
+        tree.links.new(color, displacement.inputs["Height"])
+        tree.links.new(displacement.outputs["Displacement"], output.inputs["Displacement"])
+
+
+def _set_flat_values(shader, flat: dict):
+    """Flat maps as the Principled BSDF's default values (base colour converted to linear)."""
+    if "basecolor" in flat:
+        rgb = list(flat["basecolor"])
+        rgb = rgb * 3 if len(rgb) == 1 else rgb[:3]
+        shader.inputs["Base Color"].default_value = (*(float(c) for c in srgb_to_linear(rgb)), 1.0)
+    for usage in ("roughness", "metallic"):
+        if usage in flat:
+            shader.inputs[IMAGE_MAPS[usage][2]].default_value = float(flat[usage][0])
