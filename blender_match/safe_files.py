@@ -11,6 +11,12 @@ class FileWriteError(ValueError):
     """A file that may not or cannot be written (names the file and the problem)."""
 
 
+def _umask() -> int:
+    mask = os.umask(0)
+    os.umask(mask)
+    return mask
+
+
 def write_atomic(path: Path, data: bytes, overwrite: bool = False):
     """Write ``data`` to ``path`` through a temporary file and a rename, so that a reader never
     sees a half-written file. Refuses to replace an existing file unless ``overwrite``."""
@@ -22,6 +28,7 @@ def write_atomic(path: Path, data: bytes, overwrite: bool = False):
     try:
         with os.fdopen(fd, "wb") as f:
             f.write(data)
+        os.chmod(tmp, 0o666 & ~_umask())  # mkstemp's 0600 would hide the file from other users
         os.replace(tmp, path)
     except BaseException:
         Path(tmp).unlink(missing_ok=True)
