@@ -10,10 +10,10 @@ from .measure import best_of
 SIZES = (512, 2048)
 
 
-def run(device: str = "cpu", names: list[str] | None = None, sizes=SIZES, repeats: int = 1) -> list[dict]:
+def run(device: str = "cpu", graphs: list[str] | None = None, sizes=SIZES, repeats: int = 1) -> list[dict]:
     from ..library import library_entry, library_names, load_library_graph
 
-    names = names or library_names()
+    names = graphs or library_names()
     if not names:
         raise FileNotFoundError("no library graphs are built (python -m blender_match.library.build)")
     rows = []

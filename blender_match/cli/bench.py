@@ -4,7 +4,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-SUITES = ("nodes", "translator", "library")
+SUITES = ("nodes", "translator", "library", "match")
 
 
 def add_parser(sub):
@@ -13,6 +13,9 @@ def add_parser(sub):
     p.add_argument("--device", default="cpu", help="cpu, cuda or mps")
     p.add_argument("--threads", type=int, default=0, help="CPU threads for torch (0: torch's default)")
     p.add_argument("--files", nargs="+", type=Path, help="input files, for suites that take them (translator)")
+    p.add_argument("--graphs", nargs="+", help="library graphs to use (match)")
+    p.add_argument("--paper-iterations", type=int, help="iterations of the paper's optimiser (match)")
+    p.add_argument("--quality", help="our preset to compare (match)")
     p.add_argument("--json", action="store_true", help="print rows as JSON")
     p.set_defaults(run=run)
 
@@ -35,7 +38,9 @@ def run(args) -> int:
     if args.threads:
         torch.set_num_threads(args.threads)
     module = importlib.import_module(f"blender_match.benchmarks.{args.what}")
-    extra = {"files": args.files} if args.files else {}
+    options = {"files": args.files, "graphs": args.graphs, "paper_iterations": args.paper_iterations,
+               "quality": args.quality}
+    extra = {k: v for k, v in options.items() if v is not None}
     rows = module.run(device=args.device, **extra)
     if args.json:
         print(json.dumps(rows, indent=1))

@@ -28,24 +28,6 @@ def add_parser(sub):
     p.set_defaults(run=run)
 
 
-def load_graph(source: str):
-    """A MaterialGraph from a bundled name, a library name or an .sbs path."""
-    from ..bundled_graphs import BUNDLED, build
-    from ..library import library_names, load_library_graph
-
-    if source in BUNDLED:
-        return build(source)
-    if source in library_names():
-        return load_library_graph(source)
-    path = Path(source)
-    if path.suffix.lower() == ".sbs":
-        from ..translator import load_sbs_graph
-
-        return load_sbs_graph(path)
-    raise ValueError(f"{source}: not a bundled graph ({', '.join(sorted(BUNDLED))}), a library graph "
-                     f"({', '.join(library_names()) or 'none built'}) nor a .sbs file")
-
-
 def run(args) -> int:
     from ..bundled_graphs import BUNDLED
 
@@ -74,6 +56,8 @@ def run(args) -> int:
             raise ValueError(f"--sample: expected a non-negative integer, got {args.sample}")
         if params_path.exists() and not args.overwrite:
             raise FileExistsError(f"{params_path}: already exists (use --overwrite to replace it)")
+    from ..pipeline import load_graph
+
     graph = load_graph(args.source)
     if args.sample is not None:
         from ..diffmat.params_file import apply_params

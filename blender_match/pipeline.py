@@ -1,0 +1,290 @@
+"""The matching pipeline that the CLI (``blender-match match``), the worker process and the Blender
+add-on share: photo in, fitted procedural material out, as files in one folder.
+
+``match_photo(photo, out_dir, options, progress, cancel)`` reads the photo, fits the graph
+(``options.graph``), evaluates the fitted graph at ``options.size`` and writes, atomically:
+
+    basecolor.png (sRGB, 8-bit)   normal.png (OpenGL, 16-bit)   roughness.png   metallic.png
+    height.png (16-bit)           ambientocclusion.png (when the graph has it)
+    params.json (reloadable: ``render_params``)   comparison.png (photo | render | maps)
+    report.json (returned as a dict too)
+
+``render_params(params_file, out_dir, size)`` re-renders a fitted material at another size
+without the photo (the add-on's "re-render at 4K").
+
+``progress(event)`` receives dicts: ``stage`` (one of ``STAGES``), ``fraction`` of the whole job
+in [0, 1], ``eta_seconds`` (or None), and while fitting ``graph``, ``graph_index``,
+``graph_count``, ``iteration``, ``iterations``, ``loss``. ``cancel()`` is polled at least once per
+iteration; when it returns True the job stops with ``MatchCancelled`` and writes nothing.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+QUALITIES = ("draft", "balanced", "best")
+DEVICES = ("auto", "cpu", "cuda", "mps")
+STAGES = ("reading photo", "selecting", "fitting", "writing maps")
+
+
+class MatchCancelled(Exception):
+    """The caller's cancel flag stopped the job; nothing was written."""
+
+
+@dataclass
+class MatchOptions:
+    """What to match and how. ``graph``: a library graph's name, a bundled graph's name or a
+    ``.sbs`` path (None: automatic selection). ``iterations`` overrides the quality preset's
+    iteration count (tests and scripted drafts)."""
+
+    graph: str | None = None
+    size: int = 2048
+    quality: str = "balanced"
+    seed: int = 0
+    device: str = "auto"
+    overwrite: bool = False
+    iterations: int | None = None
+
+
+MATCH_FILES = ("params.json", "comparison.png", "report.json")
+COMPARISON_TILE = 256
+PHOTO_SIZE = 512  # the photo is described at 512 at most (the paper's largest scale)
+# share of the whole job each stage takes, for the progress fraction
+_STAGE_SHARE = {"reading photo": 0.02, "selecting": 0.0, "fitting": 0.88, "writing maps": 0.10}
+
+
+class MatchFailed(ValueError):
+    """The fit produced no usable material (a non-finite loss or map); nothing was written."""
+
+
+def load_graph(source: str):
+    """A MaterialGraph from a bundled graph's name, a library graph's name or an .sbs path."""
+    from pathlib import Path
+
+    from .bundled_graphs import BUNDLED, build
+    from .library import library_names, load_library_graph
+
+    if source in BUNDLED:
+        return build(source)
+    if source in library_names():
+        return load_library_graph(source)
+    path = Path(source)
+    if path.suffix.lower() == ".sbs":
+        from .translator import load_sbs_graph
+
+        return load_sbs_graph(path)
+    raise ValueError(f"{source}: not a bundled graph ({', '.join(sorted(BUNDLED))}), a library graph "
+                     f"({', '.join(library_names()) or 'none built'}) nor a .sbs file")
+
+
+def resolve_device(name: str):
+    """The torch device for "auto", "cpu", "cuda" or "mps" (a clear error when it is absent)."""
+    import torch
+
+    if name not in DEVICES:
+        raise ValueError(f"device {name!r}: expected one of {', '.join(DEVICES)}")
+    if name == "auto":
+        if torch.cuda.is_available():
+            return torch.device("cuda")
+        if getattr(torch.backends, "mps", None) is not None and torch.backends.mps.is_available():
+            return torch.device("mps")
+        return torch.device("cpu")
+    if name == "cuda" and not torch.cuda.is_available():
+        raise ValueError("device cuda: no CUDA GPU is available to this torch")
+    if name == "mps" and not (getattr(torch.backends, "mps", None) and torch.backends.mps.is_available()):
+        raise ValueError("device mps: Metal is not available to this torch")
+    return torch.device(name)
+
+
+def _check_size(size) -> int:
+    if isinstance(size, bool) or not isinstance(size, int) or size < 16 or size > 8192 or size & (size - 1):
+        raise ValueError(f"size {size!r}: expected a power of two between 16 and 8192")
+    return size
+
+
+def _check_targets(out_dir, graph, overwrite: bool, extra=MATCH_FILES):
+    """Refuse, before any work, to replace existing files of a result folder."""
+    from pathlib import Path
+
+    from .material_maps import MAP_FILES
+
+    if overwrite:
+        return
+    names = [MAP_FILES[u][0] for u in graph.outputs if u in MAP_FILES] + list(extra)
+    existing = [Path(out_dir) / n for n in names if (Path(out_dir) / n).exists()]
+    if existing:
+        raise FileExistsError(f"{existing[0]}: already exists (use --overwrite to replace it)")
+
+
+class _Progress:
+    """Turns stage-local progress into job-wide events (fraction of the whole, time left)."""
+
+    def __init__(self, callback, cancel):
+        import time
+
+        self.callback, self.cancel = callback, cancel
+        self.start = time.perf_counter()
+        self.stage_seconds: dict[str, float] = {}
+        self._stage, self._stage_start, self._done = None, self.start, 0.0
+
+    def stage(self, name: str, **extra):
+        import time
+
+        now = time.perf_counter()
+        if self._stage is not None:
+            self.stage_seconds[self._stage] = round(now - self._stage_start, 3)
+            self._done += _STAGE_SHARE[self._stage]
+        self._stage, self._stage_start = name, now
+        if name is not None:
+            self.check_cancel()
+            self.emit({"stage": name, "fraction": round(self._done, 4), "eta_seconds": None, **extra})
+
+    def within(self, local_fraction: float, eta_seconds=None, **extra):
+        share = _STAGE_SHARE[self._stage]
+        self.emit({"stage": self._stage, "fraction": round(self._done + share * min(1.0, local_fraction), 4),
+                   "eta_seconds": None if eta_seconds is None else round(eta_seconds, 1), **extra})
+
+    def emit(self, event: dict):
+        if self.callback is not None:
+            self.callback(event)
+
+    def check_cancel(self):
+        if self.cancel is not None and self.cancel():
+            raise MatchCancelled()
+
+
+def _write_result(graph, out_dir, size: int, seed: int, device, overwrite: bool, progress: _Progress,
+                  photo=None, report_extra: dict | None = None) -> dict:
+    """Evaluate the graph at ``size`` and write maps, params.json, comparison.png, report.json."""
+    import json
+    from pathlib import Path
+
+    import torch
+
+    from .diffmat.params_file import graph_params
+    from .diffmat.render import render_maps
+    from .image_files import write_png
+    from .material_maps import write_maps
+    from .safe_files import write_atomic
+
+    out_dir = Path(out_dir)
+    with torch.no_grad():
+        maps = graph(size=size, seed=seed)
+        bad = [u for u, m in maps.items() if not torch.isfinite(m).all()]
+        if bad:
+            raise MatchFailed(f"graph {graph.name}: the fitted {bad[0]} map is not finite; nothing written")
+        progress.check_cancel()
+        comparison = _comparison_image(maps, photo)
+    maps = {u: m.cpu() for u, m in maps.items()}
+    progress.within(0.3)
+    written = write_maps(maps, out_dir, overwrite=overwrite)
+    params = {"graph": graph.name, "source": graph.source, "seed": seed, "params": graph_params(graph)}
+    write_atomic(out_dir / "params.json", json.dumps(params, indent=1).encode("utf-8"), overwrite=overwrite)
+    write_png(out_dir / "comparison.png", comparison, overwrite=overwrite)
+    progress.stage(None)
+    report = {"graph": graph.name, "source": graph.source, "size": size, "seed": seed, "device": str(device),
+              **(report_extra or {}), "maps": written, "params_file": "params.json",
+              "comparison": "comparison.png", "stages": progress.stage_seconds}
+    import time
+
+    report["seconds"] = round(time.perf_counter() - progress.start, 3)
+    write_atomic(out_dir / "report.json", json.dumps(report, indent=1).encode("utf-8"), overwrite=overwrite)
+    return report
+
+
+def _comparison_image(maps: dict, photo):
+    """One row of COMPARISON_TILE squares: the photo (when given), the render, then every map."""
+    import torch
+
+    from .diffmat.optim import resize_square
+    from .diffmat.render import render_maps
+    from .material_maps import to_channels
+
+    tiles = [] if photo is None else [photo]
+    tiles.append(render_maps(maps)[:1] if "basecolor" in maps else None)
+    tiles.extend(to_channels(maps[u][:1], 3) for u in ("basecolor", "normal", "roughness", "metallic", "height")
+                 if u in maps)
+    tiles = [resize_square(t.float().cpu().clamp(0, 1), COMPARISON_TILE) for t in tiles if t is not None]
+    return torch.cat(tiles, dim=3)
+
+
+def match_photo(photo, out_dir, options: MatchOptions, progress=None, cancel=None) -> dict:
+    """Fit ``options.graph`` to the photo and write the result folder (see the module docstring)."""
+    from pathlib import Path
+
+    import torch
+
+    from .diffmat.descriptor import TextureDescriptor
+    from .diffmat.optim import QUALITY_SCHEDULES, FitCancelled, TargetLoss, fit
+    from .photo import load_photo
+
+    if options.quality not in QUALITIES:
+        raise ValueError(f"quality {options.quality!r}: expected one of {', '.join(QUALITIES)}")
+    size = _check_size(options.size)
+    if options.graph is None:
+        raise ValueError("match: automatic graph selection is not available yet; name a graph (--graph)")
+    device = resolve_device(options.device)
+    job = _Progress(progress, cancel)
+    job.stage("reading photo")
+    target = load_photo(Path(photo), PHOTO_SIZE)
+    graph = load_graph(options.graph)
+    graph.source = options.graph
+    _check_targets(out_dir, graph, options.overwrite)
+    torch.manual_seed(options.seed)
+    job.stage("fitting", graph=graph.name, graph_index=1, graph_count=1)
+    schedule = QUALITY_SCHEDULES[options.quality]
+    if options.iterations is not None:
+        schedule = schedule.scaled(options.iterations)
+    graph.to(device)
+    loss = TargetLoss(target.to(device), TextureDescriptor().to(device))
+
+    def on_step(event):
+        job.within(event["iteration"] / schedule.iterations, event["eta_seconds"], graph=graph.name,
+                   graph_index=1, graph_count=1, iteration=event["iteration"], iterations=schedule.iterations,
+                   loss=round(event["loss"], 6))
+
+    try:
+        result = fit(graph, loss, schedule, seed=options.seed, progress=on_step, cancel=job.cancel)
+    except FitCancelled:
+        raise MatchCancelled() from None
+    if not torch.isfinite(result.theta).all():
+        raise MatchFailed(f"graph {graph.name}: the fit diverged (non-finite parameters); nothing written")
+    graph.set_vector(result.theta)
+    graph.clear_cache()
+    job.stage("writing maps")
+    fitted = {"photo": str(photo), "quality": options.quality, "loss_initial": round(result.loss_initial, 6),
+              "loss_final": round(result.loss_final, 6), "iterations": result.iterations,
+              "fit": {"schedule": schedule.name, "stopped": result.stopped,
+                      "stage_seconds": [round(s, 3) for s in result.stage_seconds],
+                      "parameters": graph.num_params()}}
+    return _write_result(graph, out_dir, size, options.seed, device, options.overwrite, job, photo=target,
+                         report_extra=fitted)
+
+
+def render_params(params_file, out_dir, size: int, device: str = "auto", overwrite: bool = False,
+                  progress=None, cancel=None) -> dict:
+    """Re-render a fitted material (its params.json) at ``size`` into ``out_dir``, no photo needed."""
+    import json
+    from pathlib import Path
+
+    from .diffmat.params_file import load_params
+
+    params_file = Path(params_file)
+    try:
+        data = json.loads(params_file.read_text(encoding="utf-8"))
+    except FileNotFoundError:
+        raise ValueError(f"{params_file}: parameter file not found") from None
+    except (OSError, UnicodeDecodeError, json.JSONDecodeError) as exc:
+        raise ValueError(f"{params_file}: not a readable parameter file ({exc})") from None
+    if not isinstance(data, dict) or not isinstance(data.get("source"), str):
+        raise ValueError(f"{params_file}: no \"source\" graph recorded (was it written by a match?)")
+    size = _check_size(size)
+    torch_device = resolve_device(device)
+    job = _Progress(progress, cancel)
+    graph = load_graph(data["source"])
+    graph.source = data["source"]
+    load_params(graph, params_file)
+    _check_targets(out_dir, graph, overwrite, extra=("params.json", "comparison.png", "report.json"))
+    graph.to(torch_device)
+    job.stage("writing maps")
+    return _write_result(graph, out_dir, size, int(data.get("seed", 0)), torch_device, overwrite, job,
+                         report_extra={"rendered_from": str(params_file)})
