@@ -263,19 +263,13 @@ def match_photo(photo, out_dir, options: MatchOptions, progress=None, cancel=Non
 def render_params(params_file, out_dir, size: int, device: str = "auto", overwrite: bool = False,
                   progress=None, cancel=None) -> dict:
     """Re-render a fitted material (its params.json) at ``size`` into ``out_dir``, no photo needed."""
-    import json
     from pathlib import Path
 
-    from .diffmat.params_file import load_params
+    from .diffmat.params_file import load_params, read_params_file
 
     params_file = Path(params_file)
-    try:
-        data = json.loads(params_file.read_text(encoding="utf-8"))
-    except FileNotFoundError:
-        raise ValueError(f"{params_file}: parameter file not found") from None
-    except (OSError, UnicodeDecodeError, json.JSONDecodeError) as exc:
-        raise ValueError(f"{params_file}: not a readable parameter file ({exc})") from None
-    if not isinstance(data, dict) or not isinstance(data.get("source"), str):
+    data = read_params_file(params_file)
+    if not isinstance(data.get("source"), str):
         raise ValueError(f"{params_file}: no \"source\" graph recorded (was it written by a match?)")
     size = _check_size(size)
     torch_device = resolve_device(device)
@@ -283,7 +277,7 @@ def render_params(params_file, out_dir, size: int, device: str = "auto", overwri
     graph = load_graph(data["source"])
     graph.source = data["source"]
     load_params(graph, params_file)
-    _check_targets(out_dir, graph, overwrite, extra=("params.json", "comparison.png", "report.json"))
+    _check_targets(out_dir, graph, overwrite)
     graph.to(torch_device)
     job.stage("writing maps")
     return _write_result(graph, out_dir, size, int(data.get("seed", 0)), torch_device, overwrite, job,

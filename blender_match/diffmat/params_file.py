@@ -58,8 +58,8 @@ def _check_entry(graph, key: str, value, where: str) -> tuple[str, str, torch.Te
     return owner, param, t.clamp(lo, hi)
 
 
-def load_params(graph, path: Path):
-    """Set the graph's parameters from a file written by ``save_params`` (or by hand)."""
+def read_params_file(path: Path) -> dict:
+    """The JSON object of a parameter file (DiffMatError naming the file when it is unreadable)."""
     path = Path(path)
     try:
         data = json.loads(path.read_text(encoding="utf-8"))
@@ -67,7 +67,15 @@ def load_params(graph, path: Path):
         raise DiffMatError(f"{path}: parameter file not found") from None
     except (OSError, UnicodeDecodeError, json.JSONDecodeError) as exc:
         raise DiffMatError(f"{path}: not a readable JSON parameter file ({exc})") from None
-    if not isinstance(data, dict) or not isinstance(data.get("params"), dict):
+    if not isinstance(data, dict):
+        raise DiffMatError(f"{path}: expected an object with a \"params\" object")
+    return data
+
+
+def load_params(graph, path: Path):
+    """Set the graph's parameters from a file written by ``save_params`` (or by hand)."""
+    data = read_params_file(path)
+    if not isinstance(data.get("params"), dict):
         raise DiffMatError(f"{path}: expected an object with a \"params\" object")
     apply_params(graph, data["params"], str(path))
 

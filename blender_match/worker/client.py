@@ -23,6 +23,7 @@ from pathlib import Path
 
 from . import protocol
 from .backend_setup import clean_env, popen_flags, venv_python
+from .polling import Polled
 
 # The folder holding the ``blender_match`` package: the repository in development, Blender's
 # ``extensions/user_default`` once installed as an extension (its folder is named blender_match).
@@ -60,7 +61,7 @@ def _describe_exit(code: int | None) -> str:
     return f"code {code}"
 
 
-class WorkerJob:
+class WorkerJob(Polled):
     """One worker process running one request (see ``protocol``).
 
     ``python``: the worker's Python; ``request``: a request dict (``protocol.match_request`` …);
@@ -265,14 +266,3 @@ class WorkerJob:
                     stream.close()
             except OSError:
                 pass
-
-    def wait(self, timeout: float | None = None, interval: float = 0.05) -> list[dict]:
-        """Poll until the job is done (or ``timeout`` seconds); all events seen. For scripts, the
-        command line and tests; the add-on polls from a timer instead."""
-        deadline = None if timeout is None else time.monotonic() + timeout
-        events = []
-        while True:
-            events += self.poll()
-            if self.done or (deadline is not None and time.monotonic() > deadline):
-                return events
-            time.sleep(interval)
