@@ -142,3 +142,19 @@ def test_nothing_to_fit_is_an_error(descriptor):
     graph.freeze("*")
     with pytest.raises(DiffMatError, match="nothing to fit"):
         fit(graph, TargetLoss(target_photo(), descriptor), SMALL)
+
+
+def _library_names():
+    from blender_match.library import library_names
+
+    return library_names()
+
+
+@pytest.mark.parametrize("name", _library_names())
+def test_every_library_graph_fits_a_noise_photo_without_nan(name, descriptor):
+    from blender_match.library import load_library_graph
+
+    photo = torch.rand(1, 3, 64, 64, generator=torch.Generator().manual_seed(1))
+    result = fit(load_library_graph(name), TargetLoss(photo, descriptor), Schedule("x", (Stage(64, (64,), 2, 0.05),)))
+    assert torch.isfinite(result.theta).all()
+    assert all(math.isfinite(h[2]) for h in result.history) and result.loss_final <= result.loss_initial
