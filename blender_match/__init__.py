@@ -11,13 +11,19 @@ import importlib
 
 __version__ = "0.1.0"
 
-# Modules whose ``classes`` tuple holds the bpy classes to register, in order.
-_CLASS_MODULES = ("operators", "ui")
+# Modules whose ``classes`` tuple holds the bpy classes to register, in order. A module may also
+# have ``register()``/``unregister()`` for what is not a class (properties added to Blender's types),
+# run after its classes are registered and before they are unregistered.
+_CLASS_MODULES = ("preferences", "blender.properties", "operators", "ui")
+
+
+def _modules():
+    for name in _CLASS_MODULES:
+        yield importlib.import_module(f"{__name__}.{name}")
 
 
 def _classes():
-    for name in _CLASS_MODULES:
-        module = importlib.import_module(f"{__name__}.{name}")
+    for module in _modules():
         yield from getattr(module, "classes", ())
 
 
@@ -25,13 +31,25 @@ def register():
     """Register the add-on's classes with Blender."""
     import bpy
 
-    for cls in _classes():
-        bpy.utils.register_class(cls)
+    for module in _modules():
+        for cls in getattr(module, "classes", ()):
+            bpy.utils.register_class(cls)
+        hook = getattr(module, "register", None)
+        if hook is not None:
+            hook()
 
 
 def unregister():
-    """Unregister in reverse order; leaves nothing behind."""
+    """Stop running jobs, then unregister in reverse order; leaves nothing behind."""
     import bpy
 
-    for cls in reversed(list(_classes())):
-        bpy.utils.unregister_class(cls)
+    from .blender import match_job
+
+    match_job.shutdown()
+    for module in reversed(list(_modules())):
+        hook = getattr(module, "unregister", None)
+        if hook is not None:
+            hook()
+        for cls in reversed(getattr(module, "classes", ())):
+            if getattr(cls, "is_registered", True):
+                bpy.utils.unregister_class(cls)

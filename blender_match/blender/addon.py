@@ -1,0 +1,268 @@
+"""What the add-on's operators, panels and preferences share: its package name, preferences, the
+backend folder, the worker's Python, the library graphs (read from their ``.json`` files: the
+``library`` package imports torch, which Blender's Python lacks) and their thumbnails, result
+folders. Imported only inside Blender (bpy is imported inside the functions that use it).
+"""
+from __future__ import annotations
+
+import json
+import os
+import re
+import time
+from pathlib import Path
+
+# The add-on's top package: "blender_match" as a plain module, "bl_ext.<repo>.blender_match" as an
+# extension. AddonPreferences.bl_idname and extension_path_user need it.
+ADDON_PACKAGE = __package__.rpartition(".")[0]
+PACKAGE_DIR = Path(__file__).resolve().parents[1]
+GRAPHS_DIR = PACKAGE_DIR / "library" / "graphs"
+
+NO_BACKEND = "No matching backend: set it up in Preferences > Add-ons > Blender Match"
+SIZES = {"1K": 1024, "2K": 2048, "4K": 4096}
+SIZE_ITEMS = [("1K", "1K", "1024 x 1024 pixels"), ("2K", "2K", "2048 x 2048 pixels"),
+              ("4K", "4K", "4096 x 4096 pixels")]
+QUALITY_ITEMS = [("draft", "Draft", "Fast: a short fit, for a first look"),
+                 ("balanced", "Balanced", "The default: a good fit in a few minutes"),
+                 ("best", "Best", "The longest fit, for the final material")]
+DEVICE_ITEMS = [("auto", "Automatic", "A GPU (CUDA or Metal) when the worker has one, else the CPU"),
+                ("cpu", "CPU", "The processor"),
+                ("cuda", "CUDA", "An NVIDIA GPU"),
+                ("mps", "Metal", "An Apple GPU")]
+PREFERENCES_DEVICE = ("default", "Preferences", "The default device set in the add-on's preferences")
+RESULT_FOLDER = "blender_match"
+
+
+class AddonError(ValueError):
+    """Something the user has to fix before the add-on can act (the message says what)."""
+
+
+# --- preferences and the worker ------------------------------------------------------------------
+
+
+def preferences(context=None):
+    """The add-on's preferences, or None when it is registered without being enabled as an
+    add-on (e.g. ``blender_match.register()`` in a script)."""
+    import bpy
+
+    context = context or bpy.context
+    addon = context.preferences.addons.get(ADDON_PACKAGE)
+    return addon.preferences if addon is not None else None
+
+
+def backend_dir(create: bool = False) -> Path:
+    """The folder of the backend's virtual environment: the extension's user folder, or, for an
+    add-on loaded as a plain module (no extension to own a folder), one under the user's scripts."""
+    import bpy
+
+    try:
+        return Path(bpy.utils.extension_path_user(ADDON_PACKAGE, path="backend", create=create))
+    except ValueError:  # "The package does not name an extension"
+        folder = Path(bpy.utils.user_resource("SCRIPTS")) / "blender_match_backend"
+        if create:
+            folder.mkdir(parents=True, exist_ok=True)
+        return folder
+
+
+def worker_python(context=None) -> str:
+    """The Python that runs the worker: the preference, else the backend's; AddonError if none."""
+    from ..worker.client import find_worker_python
+
+    prefs = preferences(context)
+    preferred = (prefs.worker_python if prefs is not None else "").strip()
+    if preferred:
+        import bpy
+
+        preferred = bpy.path.abspath(preferred)
+    python = find_worker_python(preferred or None, backend_dir())
+    if python is None:
+        if preferred:
+            raise AddonError(f"{NO_BACKEND} (the worker Python {preferred} set there does not exist "
+                             "or cannot be run)")
+        raise AddonError(NO_BACKEND)
+    return python
+
+
+def default_device(context=None) -> str:
+    prefs = preferences(context)
+    return prefs.default_device if prefs is not None else "auto"
+
+
+def resolve_device(device: str, context=None) -> str:
+    return default_device(context) if device in ("default", "", None) else device
+
+
+# --- the library graphs --------------------------------------------------------------------------
+
+_GRAPHS: dict | None = None
+
+
+def library_graphs() -> dict[str, dict]:
+    """Library graph name -> its metadata (name, description, exposed, exposed_params), read
+    from ``library/graphs/*.json`` (those with their ``.sbs``), sorted by name."""
+    global _GRAPHS
+    if _GRAPHS is None:
+        graphs = {}
+        for path in sorted(GRAPHS_DIR.glob("*.json")):
+            if not (GRAPHS_DIR / f"{path.stem}.sbs").is_file():
+                continue
+            try:
+                entry = json.loads(path.read_text(encoding="utf-8"))
+            except (OSError, UnicodeDecodeError, json.JSONDecodeError):
+                continue
+            if isinstance(entry, dict):
+                graphs[path.stem] = {"name": entry.get("name", path.stem),
+                                     "description": entry.get("description", ""),
+                                     "exposed": list(entry.get("exposed") or []),
+                                     "exposed_params": dict(entry.get("exposed_params") or {})}
+        _GRAPHS = graphs
+    return _GRAPHS
+
+
+def graph_title(name: str) -> str:
+    return name.replace("_", " ").title()
+
+
+def graph_source_name(source: str | None) -> str | None:
+    """The library graph a stored "source" names (a name, or a path to a library .sbs), or None."""
+    if not source:
+        return None
+    stem = Path(source).name
+    stem = stem[:-4] if stem.lower().endswith(".sbs") else stem
+    return stem if stem in library_graphs() else None
+
+
+_PREVIEWS = None
+
+
+def graph_icon(name: str) -> int:
+    """The icon id of a library graph's thumbnail (``graphs/<name>.png``), 0 when there is none."""
+    global _PREVIEWS
+    path = GRAPHS_DIR / f"{name}.png"
+    if not path.is_file():
+        return 0
+    if _PREVIEWS is None:
+        import bpy.utils.previews
+
+        _PREVIEWS = bpy.utils.previews.new()
+    if name not in _PREVIEWS:
+        _PREVIEWS.load(name, str(path), "IMAGE")
+    return _PREVIEWS[name].icon_id
+
+
+def release_previews() -> None:
+    global _PREVIEWS, _GRAPHS
+    if _PREVIEWS is not None:
+        import bpy.utils.previews
+
+        bpy.utils.previews.remove(_PREVIEWS)
+        _PREVIEWS = None
+    _GRAPHS = None
+
+
+# --- context -------------------------------------------------------------------------------------
+
+
+def active_object(context):
+    obj = getattr(context, "active_object", None)
+    if obj is None and getattr(context, "view_layer", None) is not None:
+        obj = context.view_layer.objects.active
+    return obj
+
+
+def active_material(context):
+    obj = active_object(context)
+    return obj.active_material if obj is not None else None
+
+
+def scene_key(scene) -> int:
+    """A key for one scene that survives renames and undo (the registry of running jobs)."""
+    return scene.session_uid
+
+
+def redraw_ui(context=None) -> None:
+    """Redraw the panels showing the add-on (its progress bar, the preferences)."""
+    import bpy
+
+    wm = (context or bpy.context).window_manager
+    if wm is None:
+        return
+    for window in wm.windows:
+        screen = window.screen
+        if screen is None:
+            continue
+        for area in screen.areas:
+            if area.type == "PREFERENCES":
+                area.tag_redraw()
+            elif area.type in ("VIEW_3D", "NODE_EDITOR"):
+                for region in area.regions:  # the sidebar only, not the (costly) viewport itself
+                    if region.type == "UI":
+                        region.tag_redraw()
+
+
+# --- result folders ------------------------------------------------------------------------------
+
+
+def blend_is_saved() -> bool:
+    import bpy
+
+    return bool(bpy.data.filepath)
+
+
+def results_root() -> Path:
+    """``//blender_match`` next to the saved .blend, else a folder in Blender's session temporary
+    folder (removed when Blender quits: the caller packs the images then)."""
+    import bpy
+
+    if bpy.data.filepath:
+        return Path(bpy.path.abspath("//" + RESULT_FOLDER))
+    return Path(bpy.app.tempdir or os.environ.get("TMPDIR", "/tmp")) / RESULT_FOLDER
+
+
+def folder_stem(text: str) -> str:
+    stem = re.sub(r"[^\w.-]+", "_", Path(str(text)).stem if str(text).lower().endswith(".sbs") else str(text))
+    return stem.strip("._") or "material"
+
+
+def new_result_folder(stem: str) -> tuple[Path, list[Path]]:
+    """Create a new, empty ``<root>/<stem>_<timestamp>[_n]`` folder (never an existing one); the
+    folder and the list of folders created for it (to remove if the job leaves nothing)."""
+    root = results_root()
+    created = []
+    missing = []
+    parent = root
+    while not parent.exists():
+        missing.append(parent)
+        if parent.parent == parent:
+            break
+        parent = parent.parent
+    try:
+        root.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise AddonError(f"cannot create the result folder {root}: {exc.strerror or exc}") from None
+    created.extend(reversed(missing))
+    base = f"{folder_stem(stem)}_{time.strftime('%Y%m%d-%H%M%S')}"
+    for n in range(1, 1000):
+        folder = root / (base if n == 1 else f"{base}_{n}")
+        try:
+            folder.mkdir()
+        except FileExistsError:
+            continue
+        except OSError as exc:
+            raise AddonError(f"cannot create the result folder {folder}: {exc.strerror or exc}") from None
+        return folder, [folder, *reversed(created)]
+    raise AddonError(f"{root}: no free folder name for {base}")
+
+
+def format_seconds(seconds) -> str:
+    if seconds is None:
+        return ""
+    seconds = max(0.0, float(seconds))
+    if seconds < 1:
+        return "<1 s"
+    if seconds < 60:
+        return f"{seconds:.0f} s"
+    minutes, secs = divmod(int(round(seconds)), 60)
+    if minutes < 60:
+        return f"{minutes} min {secs} s" if secs else f"{minutes} min"
+    hours, minutes = divmod(minutes, 60)
+    return f"{hours} h {minutes} min"
