@@ -198,7 +198,9 @@ def test_render_request_writes_maps(tmp_path):
 
 
 def test_cancel_is_cooperative(tmp_path):
-    job = WorkerJob(PYTHON, protocol.render_request(_params_file(tmp_path), tmp_path / "out", 32))
+    # a long grace period: on a loaded machine importing torch alone can outlast the default one
+    job = WorkerJob(PYTHON, protocol.render_request(_params_file(tmp_path), tmp_path / "out", 32),
+                    grace_seconds=120)
     job.cancel()  # read by the worker long before the render's first cancel check
     events = job.wait(timeout=300)
     assert job.state == "cancelled", (job.error_message, job.stderr_text())
