@@ -220,12 +220,14 @@ def match_photo(photo, out_dir, options: MatchOptions, progress=None, cancel=Non
     if options.quality not in QUALITIES:
         raise ValueError(f"quality {options.quality!r}: expected one of {', '.join(QUALITIES)}")
     size = _check_size(options.size)
-    if options.graph is None:
-        raise ValueError("match: automatic graph selection is not available yet; name a graph (--graph)")
     device = resolve_device(options.device)
     job = _Progress(progress, cancel)
     job.stage("reading photo")
     target = load_photo(Path(photo), PHOTO_SIZE)
+    if options.graph is None:  # automatic selection: rank the library, fit the best 3, keep one
+        from .selection.select import match_auto
+
+        return match_auto(target, photo, out_dir, options, job, device)
     graph = load_graph(options.graph)
     graph.source = options.graph
     _check_targets(out_dir, graph, options.overwrite)
@@ -236,6 +238,9 @@ def match_photo(photo, out_dir, options: MatchOptions, progress=None, cancel=Non
         schedule = schedule.scaled(options.iterations)
     graph.to(device)
     loss = TargetLoss(target.to(device), TextureDescriptor().to(device))
+    from .selection.select import choose_start
+
+    theta0, start = choose_start(graph, options.graph, loss, schedule, options.seed)
 
     def on_step(event):
         job.within(event["iteration"] / schedule.iterations, event["eta_seconds"], graph=graph.name,
@@ -243,7 +248,7 @@ def match_photo(photo, out_dir, options: MatchOptions, progress=None, cancel=Non
                    loss=round(event["loss"], 6))
 
     try:
-        result = fit(graph, loss, schedule, seed=options.seed, progress=on_step, cancel=job.cancel)
+        result = fit(graph, loss, schedule, seed=options.seed, theta0=theta0, progress=on_step, cancel=job.cancel)
     except FitCancelled:
         raise MatchCancelled() from None
     if not torch.isfinite(result.theta).all():
@@ -252,7 +257,7 @@ def match_photo(photo, out_dir, options: MatchOptions, progress=None, cancel=Non
     graph.clear_cache()
     job.stage("writing maps")
     fitted = {"photo": str(photo), "quality": options.quality, "loss_initial": round(result.loss_initial, 6),
-              "loss_final": round(result.loss_final, 6), "iterations": result.iterations,
+              "loss_final": round(result.loss_final, 6), "iterations": result.iterations, "start": start,
               "fit": {"schedule": schedule.name, "stopped": result.stopped,
                       "stage_seconds": [round(s, 3) for s in result.stage_seconds],
                       "parameters": graph.num_params()}}

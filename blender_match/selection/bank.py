@@ -1,0 +1,157 @@
+"""The sample bank: graph selection and a starting point without any training.
+
+For each library graph, the bank holds the compact descriptors (``selection.descriptor``) of N
+random variants of the graph (``sample_params(name, k)``, k = 0..N-1, rendered at 128 px under
+the flash with graph seed ``BANK_SEED``) together with their normalised parameter vectors. A
+photo's nearest sample (``nearest``) gives, per graph, how close the graph can come to the photo
+without fitting and the parameters that came closest: a start for the fit. Adding a graph only
+adds its bank; nothing else is recomputed.
+
+Files: ``library/models/<name>.bank.pt``, a ``torch.save`` of plain tensors, strings and numbers
+(``torch.load(..., weights_only=True)`` reads it): ``descriptors`` (N, D) float16, ``thetas``
+(N, P) float32, ``indices`` (the sample indices k), and what makes it current: the graph's
+``.sbs`` SHA-256, the descriptor kind, the render size and seed.
+
+This module also holds what the bank and the predictor's training share: the models folder,
+the staleness hash, parameter vectors of samples and rendering + describing them.
+"""
+from __future__ import annotations
+
+import hashlib
+import io
+import random
+from pathlib import Path
+
+import torch
+
+from .descriptor import DESCRIPTOR_KIND, DESCRIPTOR_SIZE, compact_descriptor, descriptor_distance, shared_vgg
+
+MODELS_DIR = Path(__file__).resolve().parents[1] / "library" / "models"
+BANK_SIZE = 64
+BANK_SEED = 0
+BANK_SUFFIX = ".bank.pt"
+
+
+def models_dir(path=None) -> Path:
+    return Path(path) if path is not None else MODELS_DIR
+
+
+def sbs_hash(name: str) -> str:
+    """SHA-256 of a library graph's shipped .sbs file: a model built from another one is stale."""
+    from ..library import library_path
+
+    return hashlib.sha256(library_path(name).read_bytes()).hexdigest()
+
+
+def save_torch(obj, path: Path):
+    """torch.save through an atomic write (a reader never sees half a file)."""
+    from ..safe_files import write_atomic
+
+    buffer = io.BytesIO()
+    torch.save(obj, buffer)
+    write_atomic(Path(path), buffer.getvalue(), overwrite=True)
+
+
+def load_torch(path: Path):
+    """A file written by ``save_torch``, read with weights_only=True; None when absent."""
+    path = Path(path)
+    if not path.is_file():
+        return None
+    return torch.load(path, map_location="cpu", weights_only=True)
+
+
+class SampleSpace:
+    """A library graph's parameter vectors: the default, which components the library samples
+    (``mask``) and the normalised vector of any sample ``k`` (optionally jittered)."""
+
+    def __init__(self, name: str, graph=None):
+        from ..library import library_entry, load_library_graph
+
+        self.name = name
+        self.graph = graph if graph is not None else load_library_graph(name)
+        self.default = self.graph.get_vector().clone()
+        keys = set(library_entry(name)["sample_ranges"])
+        names = self.graph.param_names()
+        self.mask = torch.tensor([n.split("[")[0] in keys for n in names], dtype=torch.bool)
+
+    @property
+    def num_params(self) -> int:
+        return self.default.numel()
+
+    def vector(self, k: int) -> torch.Tensor:
+        """The normalised (P,) vector of ``sample_params(name, k)`` (other parameters: default)."""
+        from ..library import apply_params, sample_params
+
+        self.graph.set_vector(self.default)
+        apply_params(self.graph, sample_params(self.name, k))
+        theta = self.graph.get_vector().clone()
+        self.graph.set_vector(self.default)
+        return theta
+
+    def jittered(self, k: int, rng: random.Random, amount: float) -> torch.Tensor:
+        """Sample k moved by up to ``amount`` (uniform, normalised units) on every sampled
+        component, clamped to [0, 1]: variants just outside the declared ranges."""
+        theta = self.vector(k)
+        noise = torch.tensor([rng.uniform(-amount, amount) for _ in range(theta.numel())])
+        return torch.where(self.mask, (theta + noise).clamp(0, 1), theta)
+
+
+def render_images(graph, thetas: torch.Tensor, seed: int, size: int) -> torch.Tensor:
+    """Flash renders (N, 3, size, size) of normalised parameter vectors (N, P), graph seed ``seed``."""
+    from ..diffmat.render import render_maps
+
+    with torch.no_grad():
+        images = render_maps(graph(size=size, seed=seed, theta=thetas))
+    if images.shape[0] != thetas.shape[0]:
+        images = images.expand(thetas.shape[0], -1, -1, -1)
+    return images.clamp(0, 1)
+
+
+def describe(images: torch.Tensor, device="cpu", size: int = DESCRIPTOR_SIZE) -> torch.Tensor:
+    with torch.no_grad():
+        return compact_descriptor(shared_vgg(device), images.to(device), size).cpu()
+
+
+def build_bank(name: str, n: int = BANK_SIZE, size: int = DESCRIPTOR_SIZE, seed: int = BANK_SEED,
+               directory=None, device="cpu", progress=None, batch: int = 8) -> Path:
+    """Render and describe samples 0..n-1 of a library graph and write its bank file.
+    ``progress(done, total)`` after every batch."""
+    space = SampleSpace(name)
+    graph = space.graph.to(device)
+    thetas = torch.stack([space.vector(k) for k in range(n)])
+    descriptors = []
+    for start in range(0, n, batch):
+        images = render_images(graph, thetas[start:start + batch].to(device), seed, size)
+        descriptors.append(describe(images, device, size))
+        if progress is not None:
+            progress(min(n, start + batch), n)
+    graph.clear_cache()
+    return write_bank(name, thetas, torch.cat(descriptors), list(range(n)), size, seed, directory)
+
+
+def write_bank(name: str, thetas: torch.Tensor, descriptors: torch.Tensor, indices: list[int], size: int,
+               seed: int, directory=None) -> Path:
+    path = models_dir(directory) / f"{name}{BANK_SUFFIX}"
+    save_torch({"graph": name, "sbs_sha256": sbs_hash(name), "descriptor": DESCRIPTOR_KIND,
+                "size": int(size), "seed": int(seed), "indices": torch.tensor(indices, dtype=torch.int64),
+                "thetas": thetas.float().cpu(), "descriptors": descriptors.half().cpu()}, path)
+    return path
+
+
+def load_bank(name: str, directory=None) -> dict | None:
+    """A graph's bank (None when it has none)."""
+    return load_torch(models_dir(directory) / f"{name}{BANK_SUFFIX}")
+
+
+def bank_is_current(name: str, directory=None) -> bool:
+    bank = load_bank(name, directory)
+    return bank is not None and bank.get("sbs_sha256") == sbs_hash(name) and bank.get("descriptor") == DESCRIPTOR_KIND
+
+
+def nearest(bank: dict, descriptor: torch.Tensor, count: int = 1) -> list[dict]:
+    """The ``count`` samples of the bank closest to one descriptor (D,) or (1, D), best first:
+    {"distance", "theta" (P,), "index" (the sample k)}."""
+    distances = descriptor_distance(descriptor.reshape(1, -1), bank["descriptors"])[0]
+    order = torch.argsort(distances)[:count]
+    return [{"distance": float(distances[i]), "theta": bank["thetas"][i].clone(), "index": int(bank["indices"][i])}
+            for i in order]
