@@ -4,7 +4,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-SUITES = ("nodes", "translator", "library", "match")
+SUITES = ("nodes", "translator", "library", "match", "selection")
 
 
 def add_parser(sub):
