@@ -4,18 +4,21 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-SUITES = ("nodes", "translator", "library", "match", "selection")
+SUITES = ("nodes", "translator", "library", "match", "accuracy", "selection")
 
 
 def add_parser(sub):
     p = sub.add_parser("bench", help="run benchmarks and print figures")
-    p.add_argument("what", nargs="?", choices=SUITES, default="nodes", help="which benchmark (default: nodes)")
+    p.add_argument("what", nargs="?", choices=SUITES, default=None,
+                   help="which benchmark (default: accuracy with --out, else nodes)")
     p.add_argument("--device", default="cpu", help="cpu, cuda or mps")
     p.add_argument("--threads", type=int, default=0, help="CPU threads for torch (0: torch's default)")
     p.add_argument("--files", nargs="+", type=Path, help="input files, for suites that take them (translator)")
-    p.add_argument("--graphs", nargs="+", help="library graphs to use (match)")
+    p.add_argument("--graphs", nargs="+", help="library graphs to use (match, accuracy)")
     p.add_argument("--paper-iterations", type=int, help="iterations of the paper's optimiser (match)")
     p.add_argument("--quality", help="our preset to compare (match)")
+    p.add_argument("--quick", action="store_true", help="a small subset that runs in minutes (accuracy)")
+    p.add_argument("--out", type=Path, help="folder for results.json, results.md and charts (accuracy)")
     p.add_argument("--json", action="store_true", help="print rows as JSON")
     p.set_defaults(run=run)
 
@@ -37,9 +40,10 @@ def run(args) -> int:
 
     if args.threads:
         torch.set_num_threads(args.threads)
+    args.what = args.what or ("accuracy" if args.out else "nodes")
     module = importlib.import_module(f"blender_match.benchmarks.{args.what}")
     options = {"files": args.files, "graphs": args.graphs, "paper_iterations": args.paper_iterations,
-               "quality": args.quality}
+               "quality": args.quality, "quick": args.quick or None, "out": args.out}
     extra = {k: v for k, v in options.items() if v is not None}
     rows = module.run(device=args.device, **extra)
     if args.json:

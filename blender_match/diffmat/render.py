@@ -4,7 +4,8 @@ The BRDF is the simplified Disney/metallic-roughness model: Lambertian diffuse p
 microfacet specular lobe with Smith shadowing (Schlick-GGX form) and Schlick's Fresnel; metallic
 blends a dielectric (F0 = 0.04, diffuse = base colour) and a metal (F0 = base colour, no diffuse).
 A point light sits at a pinhole camera above the sample's centre (a phone with its flash): for
-every pixel the light and view directions coincide.
+every pixel the light and view directions coincide. For evaluation under a "novel light",
+``light_offset`` moves the light away from the camera (the general half-vector form is used then).
 
 Maps follow Blender's conventions: base colour sRGB-encoded, normal in OpenGL convention encoded in
 [0, 1], roughness perceptual (alpha = roughness squared), metallic in [0, 1]. The output is an sRGB
@@ -62,10 +63,14 @@ def _gray(x: torch.Tensor) -> torch.Tensor:
 
 def render_flash(basecolor: torch.Tensor, normal: torch.Tensor | None = None,
                  roughness: torch.Tensor | None = None, metallic: torch.Tensor | None = None,
-                 camera: FlashCamera = FlashCamera()) -> torch.Tensor:
+                 camera: FlashCamera = FlashCamera(),
+                 light_offset: tuple[float, float] | None = None) -> torch.Tensor:
     """Render maps (N, C, H, W) under a co-located flash; returns an sRGB (N, 3, H, W) image.
 
     Missing maps default to a flat normal, roughness 0.5 and metallic 0. Differentiable in every map.
+    ``light_offset`` (dx, dy), in sample widths (x right, y up), moves the light away from the
+    camera in the plane parallel to the sample (a "novel light" view, for evaluation); None keeps
+    the co-located flash.
     """
     n_img, _, h, w = basecolor.shape
     like = basecolor
@@ -84,6 +89,8 @@ def render_flash(basecolor: torch.Tensor, normal: torch.Tensor | None = None,
     ys = (torch.arange(h, dtype=like.dtype, device=like.device) + 0.5) / h - 0.5
     xs = (torch.arange(w, dtype=like.dtype, device=like.device) + 0.5) / w - 0.5
     y, x = torch.meshgrid(-ys, xs, indexing="ij")
+    if light_offset is not None:
+        return _render_offset_light(albedo, nrm, rough, metal, camera, x, y, light_offset)
     to_light = torch.stack([-x, -y, torch.full_like(x, d)])[None]
     dist2 = (to_light ** 2).sum(dim=1, keepdim=True)
     wi = to_light / dist2.sqrt()
@@ -101,8 +108,41 @@ def render_flash(basecolor: torch.Tensor, normal: torch.Tensor | None = None,
     return linear_to_srgb((diffuse + specular) * irradiance)
 
 
-def render_maps(maps: dict[str, torch.Tensor], camera: FlashCamera = FlashCamera()) -> torch.Tensor:
-    """``render_flash`` from a MaterialGraph's output dictionary."""
+def _render_offset_light(albedo, nrm, rough, metal, camera: FlashCamera, x, y, light_offset) -> torch.Tensor:
+    """The same BRDF with the light at ``light_offset`` from the camera: the light and view
+    directions differ, so the half vector, both Smith terms and Schlick's Fresnel at v.h are
+    evaluated in full. With a zero offset it equals the co-located formula."""
+    dx, dy = (float(v) for v in light_offset)
+    d = camera.camera_distance()
+    to_view = torch.stack([-x, -y, torch.full_like(x, d)])[None]
+    to_light = torch.stack([dx - x, dy - y, torch.full_like(x, d)])[None]
+    dist2 = (to_light ** 2).sum(dim=1, keepdim=True)
+    wi = to_light / dist2.sqrt()
+    wo = to_view / to_view.norm(dim=1, keepdim=True)
+    half = wi + wo
+    half = half / half.norm(dim=1, keepdim=True).clamp_min(EPS)
+    n_l = (nrm * wi).sum(dim=1, keepdim=True).clamp_min(EPS)
+    n_v = (nrm * wo).sum(dim=1, keepdim=True).clamp_min(EPS)
+    n_h = (nrm * half).sum(dim=1, keepdim=True).clamp_min(EPS)
+    v_h = (wo * half).sum(dim=1, keepdim=True).clamp(0.0, 1.0)
+    alpha = (rough.clamp(0.02, 1.0)) ** 2
+    a2 = alpha ** 2
+    ggx = a2 / (math.pi * ((n_h ** 2) * (a2 - 1) + 1) ** 2)
+    k = alpha / 2
+    g_l = n_l / (n_l * (1 - k) + k)
+    g_v = n_v / (n_v * (1 - k) + k)
+    f0 = 0.04 * (1 - metal) + albedo * metal
+    fresnel = f0 + (1 - f0) * (1 - v_h) ** 5
+    specular = ggx * fresnel * g_l * g_v / (4 * n_l * n_v)
+    diffuse = albedo * (1 - metal) / math.pi
+    irradiance = param4d(camera.power * math.pi * d * d, albedo) / dist2 * n_l
+    return linear_to_srgb((diffuse + specular) * irradiance)
+
+
+def render_maps(maps: dict[str, torch.Tensor], camera: FlashCamera = FlashCamera(),
+                light_offset: tuple[float, float] | None = None) -> torch.Tensor:
+    """``render_flash`` from a MaterialGraph's output dictionary (``light_offset``: see there)."""
     if "basecolor" not in maps:
         raise DiffMatError("render_maps: the maps have no basecolor")
-    return render_flash(maps["basecolor"], maps.get("normal"), maps.get("roughness"), maps.get("metallic"), camera)
+    return render_flash(maps["basecolor"], maps.get("normal"), maps.get("roughness"), maps.get("metallic"), camera,
+                        light_offset)
