@@ -19,7 +19,10 @@ iteration; when it returns True the job stops with ``MatchCancelled`` and writes
 """
 from __future__ import annotations
 
+import json
+import time
 from dataclasses import dataclass
+from pathlib import Path
 
 QUALITIES = ("draft", "balanced", "best")
 DEVICES = ("auto", "cpu", "cuda", "mps")
@@ -58,8 +61,6 @@ class MatchFailed(ValueError):
 
 def load_graph(source: str):
     """A MaterialGraph from a bundled graph's name, a library graph's name or an .sbs path."""
-    from pathlib import Path
-
     from .bundled_graphs import BUNDLED, build
     from .library import library_names, load_library_graph
 
@@ -103,7 +104,6 @@ def _check_size(size) -> int:
 
 def _check_targets(out_dir, graph, overwrite: bool, extra=MATCH_FILES):
     """Refuse, before any work, to replace existing files of a result folder."""
-    from pathlib import Path
 
     from .material_maps import MAP_FILES
 
@@ -119,16 +119,12 @@ class _Progress:
     """Turns stage-local progress into job-wide events (fraction of the whole, time left)."""
 
     def __init__(self, callback, cancel):
-        import time
-
         self.callback, self.cancel = callback, cancel
         self.start = time.perf_counter()
         self.stage_seconds: dict[str, float] = {}
         self._stage, self._stage_start, self._done = None, self.start, 0.0
 
     def stage(self, name: str, **extra):
-        import time
-
         now = time.perf_counter()
         if self._stage is not None:
             self.stage_seconds[self._stage] = round(now - self._stage_start, 3)
@@ -155,13 +151,9 @@ class _Progress:
 def _write_result(graph, out_dir, size: int, seed: int, device, overwrite: bool, progress: _Progress,
                   photo=None, report_extra: dict | None = None) -> dict:
     """Evaluate the graph at ``size`` and write maps, params.json, comparison.png, report.json."""
-    import json
-    from pathlib import Path
-
     import torch
 
     from .diffmat.params_file import graph_params
-    from .diffmat.render import render_maps
     from .image_files import write_png
     from .material_maps import write_maps
     from .safe_files import write_atomic
@@ -184,8 +176,6 @@ def _write_result(graph, out_dir, size: int, seed: int, device, overwrite: bool,
     report = {"graph": graph.name, "source": graph.source, "size": size, "seed": seed, "device": str(device),
               **(report_extra or {}), "maps": written, "params_file": "params.json",
               "comparison": "comparison.png", "stages": progress.stage_seconds}
-    import time
-
     report["seconds"] = round(time.perf_counter() - progress.start, 3)
     write_atomic(out_dir / "report.json", json.dumps(report, indent=1).encode("utf-8"), overwrite=overwrite)
     return report
@@ -209,8 +199,6 @@ def _comparison_image(maps: dict, photo):
 
 def match_photo(photo, out_dir, options: MatchOptions, progress=None, cancel=None) -> dict:
     """Fit ``options.graph`` to the photo and write the result folder (see the module docstring)."""
-    from pathlib import Path
-
     import torch
 
     from .diffmat.descriptor import TextureDescriptor
@@ -268,7 +256,6 @@ def match_photo(photo, out_dir, options: MatchOptions, progress=None, cancel=Non
 def render_params(params_file, out_dir, size: int, device: str = "auto", overwrite: bool = False,
                   progress=None, cancel=None) -> dict:
     """Re-render a fitted material (its params.json) at ``size`` into ``out_dir``, no photo needed."""
-    from pathlib import Path
 
     from .diffmat.params_file import load_params, read_params_file
 
