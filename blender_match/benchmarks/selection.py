@@ -25,8 +25,6 @@ from __future__ import annotations
 import sys
 import time
 
-import torch
-
 TARGET_K0 = 100_000
 TARGET_SEED0 = 200_000
 

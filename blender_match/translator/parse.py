@@ -10,7 +10,7 @@ from __future__ import annotations
 from .errors import TranslatorError
 from .function_graphs import FunctionError, parse_dynamic
 from .model import Connection, Graph, GraphOutput, Node, Package, Param, ParamInput
-from .values import BadValue, child_v, decode_container, get_v, to_float, to_int
+from .values import BadValue, child_v, decode_container, to_float, to_int
 from .xml_safety import read_document
 
 MAX_GRAPHS = 1000

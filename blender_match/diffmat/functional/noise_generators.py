@@ -202,7 +202,7 @@ def noise_anisotropic(*, x_amount: int = 8, y_amount: int = 128, smoothness=0.5,
 
 def _rows_nearest(nx, ny, size, seed, interp, device, dtype):
     """Value noise of lattice (nx, ny), interpolated along x, nearest (constant bands) along y."""
-    from .noise_primitives import _axis, _fade, _phases, _supersample, _STD
+    from .noise_primitives import _axis, _phases, _supersample, _STD
     phi, _ = _phases(seed, ("anisotropic", "value"), ny, nx, device, dtype)
     lat = torch.cos(2 * torch.pi * phi)
     ss = max(_supersample(size, nx), _supersample(size, ny))

@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import math
 import zlib
-from typing import Callable, Sequence
+from typing import Callable
 
 import torch
 import torch.nn.functional as F

@@ -11,8 +11,8 @@ from __future__ import annotations
 
 import torch
 
-from .common import param4d, pixel_grid
-from .pattern_shapes import TAU, aa_coverage, check_int, lattice_random, ref_tensor, safe_hypot, smoothstep01
+from .common import param4d
+from .pattern_shapes import TAU, aa_coverage, check_int, lattice_random, ref_tensor, smoothstep01
 
 __all__ = ["cells_soft", "cells_distance", "cells_cracks", "cells_flat", "alveolus_pattern"]
 

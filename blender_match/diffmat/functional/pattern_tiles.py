@@ -12,7 +12,7 @@ import torch.nn.functional as F
 
 from .common import param4d, pixel_grid, to_gray
 from .pattern_shapes import (SHAPES, TAU, aa_coverage, check_enum, check_int, lattice_random, ref_tensor,
-                             safe_hypot, safe_sqrt, shape_profile, smoothstep01, tile_field)
+                             safe_sqrt, shape_profile, tile_field)
 
 __all__ = ["tile_pattern", "tile_pattern_color", "tile_sampler_pattern", "brick_pattern", "checker_pattern",
            "parquet_pattern", "weave_pattern", "mesh_pattern", "circular_splatter"]

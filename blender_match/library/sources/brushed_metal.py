@@ -13,7 +13,7 @@ brushing in colour, roughness and relief), ``scratches`` (scratch visibility), `
 (fingerprint amount), ``normal_intensity``.
 """
 from blender_match.library.authoring import set_material_outputs
-from blender_match.library.expressions import const, get, gray4, lerp, vector
+from blender_match.library.expressions import get, gray4, vector
 from blender_match.translator.runtime import SbsGraph
 
 

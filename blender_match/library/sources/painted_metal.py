@@ -12,7 +12,7 @@ bare steel), ``metal_roughness``, ``wear`` (how much paint is gone), ``scratches
 amount), ``normal_intensity``.
 """
 from blender_match.library.authoring import set_material_outputs
-from blender_match.library.expressions import get, gray4, vector
+from blender_match.library.expressions import get, vector
 from blender_match.translator.runtime import SbsGraph
 
 
