@@ -6,13 +6,11 @@ from __future__ import annotations
 
 import json
 import math
-import sys
-import types
 
 import pytest
 import torch
 
-from blender_match.benchmarks import accuracy
+from blender_match.benchmarks import accuracy, accuracy_methods
 from blender_match.benchmarks.accuracy_methods import Selection, Unavailable, _prefix_points, cap_schedule
 from blender_match.benchmarks.accuracy_metrics import Scorer, classify, make_truth, map_rmse, pareto_front
 from blender_match.benchmarks.accuracy_targets import stress
@@ -131,10 +129,6 @@ def test_cap_schedule():
 
 
 def test_selection_adapter(monkeypatch):
-    monkeypatch.setitem(sys.modules, "blender_match.selection", None)  # not installed
-    with pytest.raises(Unavailable):
-        Selection().start(torch.zeros(1, 3, 8, 8), GRAPH, "predictor")
-    fake = types.ModuleType("blender_match.selection")
     calls = []
 
     def rank_graphs(photo, method="both", *, device="cpu", graphs=None):
@@ -146,8 +140,7 @@ def test_selection_adapter(monkeypatch):
         return [{"graph": "bricks", "distance": 0.1, "theta": [0.5]}, {"graph": GRAPH, "distance": 0.2,
                                                                          "theta": torch.full((3,), 0.25)}]
 
-    fake.rank_graphs = rank_graphs
-    monkeypatch.setitem(sys.modules, "blender_match.selection", fake)
+    monkeypatch.setattr(accuracy_methods.select, "rank_graphs", rank_graphs)
     sel, photo = Selection(), torch.zeros(1, 3, 8, 8)
     theta, seconds = sel.start(photo, GRAPH, "predictor")
     assert torch.equal(theta, torch.full((3,), 0.25)) and seconds >= 0
@@ -198,7 +191,7 @@ def tiny_run(tmp_path_factory):
             raise FileNotFoundError("woven_fabric.bank.pt")
         return [{"graph": GRAPH, "distance": 0.0, "theta": torch.full((size,), 0.45)}]
 
-    patch.setattr(Selection, "_rank_graphs", lambda self: rank_graphs)
+    patch.setattr(accuracy_methods.select, "rank_graphs", rank_graphs)
     try:
         status = main(["bench", "--quick", "--out", str(out)])
     finally:

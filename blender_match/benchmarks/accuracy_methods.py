@@ -21,14 +21,13 @@ and reports the method unavailable when the module or its models are missing.
 """
 from __future__ import annotations
 
-import importlib
-import inspect
 import time
 from dataclasses import dataclass, field, replace
 
 import torch
 
 from ..diffmat.optim import PAPER_SCHEDULE, QUALITY_SCHEDULES, Schedule, fit
+from ..selection import select
 from .accuracy_metrics import cap_scales
 from .evolution import evolve
 from .measure import measure
@@ -63,33 +62,19 @@ class Unavailable(Exception):
 
 
 class Selection:
-    """Adapter to ``blender_match.selection`` (the per-graph parameter predictors and the sample
-    bank): ``start(photo, graph_name, method)`` -> (theta, seconds), the start ``rank_graphs``
-    proposes for that one graph (``method`` "predictor" or "bank"), or raises ``Unavailable`` when
-    the module, or the graph's model, is missing. Imported at first use; cached per photo."""
-
-    MODULE = "blender_match.selection"
-    SUBMODULE = "blender_match.selection.select"  # where rank_graphs is defined
+    """Adapter to the selection module (the per-graph parameter predictors and the sample bank):
+    ``start(photo, graph_name, method)`` -> (theta, seconds), the start ``rank_graphs`` proposes
+    for that one graph (``method`` "predictor" or "bank"), or raises ``Unavailable`` when the
+    graph's model files are missing. Cached per photo."""
 
     def __init__(self, device: str = "cpu"):
         self.device = device
         self._cache: dict = {}
 
-    def _rank_graphs(self):
-        for name in (self.MODULE, self.SUBMODULE):
-            try:
-                return importlib.import_module(name).rank_graphs
-            except (ImportError, AttributeError, TypeError):
-                continue
-        raise Unavailable(f"{self.MODULE}.rank_graphs is not installed")
-
     def _rank(self, photo: torch.Tensor, method: str, graph_name: str):
-        rank_graphs = self._rank_graphs()
-        accepted = inspect.signature(rank_graphs).parameters
-        options = {k: v for k, v in (("graphs", [graph_name]), ("device", self.device)) if k in accepted}
         try:
-            return rank_graphs(photo, method=method, **options)
-        except (FileNotFoundError, ImportError) as exc:
+            return select.rank_graphs(photo, method=method, graphs=[graph_name], device=self.device)
+        except FileNotFoundError as exc:
             raise Unavailable(f"{method}: model files missing ({exc})") from None
         except ValueError as exc:  # the module's "no models found" refusal
             if "model" in str(exc):
