@@ -40,7 +40,7 @@ from __future__ import annotations
 import torch
 
 from ..errors import DiffMatError
-from .common import COLOR, GRAY, _step, check_choice, check_image, param2d, param4d
+from .common import COLOR, GRAY, _step, broadcast_shape, check_choice, check_image, param2d, param4d
 
 __all__ = ["blend"]
 
@@ -174,7 +174,7 @@ def _blend_color_nograd(mode: int, fg: torch.Tensor, bg: torch.Tensor, weight: t
         else:
             t = _target(mode, f_rgb, b_rgb)
         a = weight * f_a
-        shape = torch.broadcast_shapes(t.shape, a.shape, b_rgb.shape)
+        shape = broadcast_shape(t.shape, a.shape, b_rgb.shape)
         out = torch.empty((shape[0], 4) + tuple(shape[2:]), dtype=bg.dtype, device=bg.device)
         torch.lerp(b_rgb, t, a, out=out[:, :3])
         torch.addcmul(a, b_a, (1 - a), out=out[:, 3:])

@@ -48,6 +48,19 @@ def check_choice(value, choices: Sequence, name: str):
     return value
 
 
+def broadcast_shape(*shapes: Sequence[int]) -> tuple[int, ...]:
+    """The broadcast of ``shapes``, as ``torch.broadcast_shapes`` computes it; written here
+    because torch's version imports sympy on first use (close to a second per process)."""
+    ndim = max(len(s) for s in shapes)
+    out = []
+    for dims in zip(*((1,) * (ndim - len(s)) + tuple(s) for s in shapes)):
+        sizes = {d for d in dims if d != 1}
+        if len(sizes) > 1:
+            raise DiffMatError(f"shapes {[tuple(s) for s in shapes]} do not broadcast together")
+        out.append(sizes.pop() if sizes else 1)
+    return tuple(out)
+
+
 def param4d(value, like: torch.Tensor | None = None) -> torch.Tensor:
     """A parameter as a (B|1, k, 1, 1) tensor on ``like``'s device and dtype.
 

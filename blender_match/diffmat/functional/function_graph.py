@@ -39,7 +39,7 @@ from typing import Any, Callable, Mapping, Sequence
 import torch
 
 from ..errors import DiffMatError
-from .common import sample_wrap
+from .common import broadcast_shape, sample_wrap
 
 # re-exported by diffmat.functional under these prefixed names
 __all__ = ["evaluate_function_graph", "validate_function_graph", "load_function_graph"]
@@ -240,7 +240,7 @@ class _V:
 
 
 def _cat(xs: Sequence[torch.Tensor]) -> torch.Tensor:
-    lead = torch.broadcast_shapes(*(x.shape[:-1] for x in xs))
+    lead = broadcast_shape(*(x.shape[:-1] for x in xs))
     return torch.cat([x.expand(*lead, x.shape[-1]) for x in xs], dim=-1)
 
 
