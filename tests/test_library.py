@@ -121,6 +121,19 @@ def test_random_samples_are_finite_and_differ(name):
     assert (renders[0] - renders[1]).abs().mean().item() > 0.01
 
 
+@pytest.mark.parametrize("name", SOURCES)
+def test_a_dielectric_stays_dielectric_whatever_the_parameters(name):
+    """A constant metallic map (``constant_map``: a function-driven uniform) is bound, not
+    optimised: no parameter vector can make a dielectric metallic."""
+    graph = translated(name)
+    with torch.no_grad():
+        default = graph(size=32)["metallic"]
+        if default.max() > 0:
+            pytest.skip(f"{name} is not a dielectric")
+        extremes = torch.stack([torch.zeros(graph.num_params()), torch.ones(graph.num_params())])
+        assert graph(size=32, theta=extremes)["metallic"].max().item() == 0.0
+
+
 def test_cli_library_json_lists_every_graph(capsys):
     assert main(["library", "--json"]) == 0
     rows = json.loads(capsys.readouterr().out)

@@ -71,7 +71,7 @@ def test_predictor_forward_range_and_weights_only_round_trip(tmp_path):
     loaded = load_predictor("plaster", tmp_path)
     with torch.no_grad():
         assert torch.allclose(loaded(x), y, atol=2e-3)
-    assert not predictor_is_current("plaster", tmp_path)  # no .sbs hash recorded: stale
+    assert not predictor_is_current("plaster", tmp_path)  # no graph hash recorded: stale
 
 
 def test_parameter_training_lowers_the_parameter_loss(monkeypatch):
@@ -179,7 +179,7 @@ def test_train_command_writes_models_and_skips_up_to_date_graphs(tmp_path, capsy
     meta = json.loads((tmp_path / "plaster.predictor.json").read_text())
     assert meta["training_samples"] + meta["validation_samples"] == 10 and meta["bank_samples"] == 2
     assert meta["descriptor_dim"] == DESCRIPTOR_DIM and meta["dtype"] == "float16"
-    assert {"val_param_error", "val_param_error_default", "sbs_sha256", "seconds"} <= set(meta)
+    assert {"val_param_error", "val_param_error_default", "graph_sha256", "seconds"} <= set(meta)
     assert predictor_is_current("plaster", tmp_path) and bank_is_current("plaster", tmp_path)
     assert load_bank("plaster", tmp_path)["descriptors"].shape == (2, DESCRIPTOR_DIM)
     assert (tmp_path / "plaster.train.pt").is_file()  # --keep-data

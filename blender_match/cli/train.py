@@ -3,7 +3,8 @@ sample banks that automatic graph selection (``blender-match match`` without ``-
 
 Per library graph it writes, in ``blender_match/library/models/``, ``<name>.bank.pt``,
 ``<name>.predictor.pt`` and ``<name>.predictor.json`` (see ``blender_match.selection``). Graphs
-whose files are up to date (same .sbs hash) are skipped unless ``--force``; so after adding a
+whose files are up to date (same hash of the .sbs and its
+``.json`` parameter space) are skipped unless ``--force``; so after adding a
 graph to the library, ``blender-match train --all`` trains only that one. ``--resume`` continues
 an interrupted training from its checkpoint (``<name>.train.pt``) instead of starting over.
 Progress goes to stderr, one summary line per graph to stdout.

@@ -36,11 +36,14 @@ def models_dir(path=None) -> Path:
     return Path(path) if path is not None else MODELS_DIR
 
 
-def sbs_hash(name: str) -> str:
-    """SHA-256 of a library graph's shipped .sbs file: a model built from another one is stale."""
+def graph_hash(name: str) -> str:
+    """SHA-256 of a library graph's shipped .sbs file and its metadata (the translated parameter
+    space, sampling ranges): a model built from either one changed is stale, so a translator
+    change that moves the parameter vector retrains the graphs it touches."""
     from ..library import library_path
 
-    return hashlib.sha256(library_path(name).read_bytes()).hexdigest()
+    sbs = library_path(name)
+    return hashlib.sha256(sbs.read_bytes() + sbs.with_suffix(".json").read_bytes()).hexdigest()
 
 
 def save_torch(obj, path: Path):
@@ -132,7 +135,7 @@ def build_bank(name: str, n: int = BANK_SIZE, size: int = DESCRIPTOR_SIZE, seed:
 def write_bank(name: str, thetas: torch.Tensor, descriptors: torch.Tensor, indices: list[int], size: int,
                seed: int, directory=None) -> Path:
     path = models_dir(directory) / f"{name}{BANK_SUFFIX}"
-    save_torch({"graph": name, "sbs_sha256": sbs_hash(name), "descriptor": DESCRIPTOR_KIND,
+    save_torch({"graph": name, "graph_sha256": graph_hash(name), "descriptor": DESCRIPTOR_KIND,
                 "size": int(size), "seed": int(seed), "indices": torch.tensor(indices, dtype=torch.int64),
                 "thetas": thetas.float().cpu(), "descriptors": descriptors.half().cpu()}, path)
     return path
@@ -145,7 +148,7 @@ def load_bank(name: str, directory=None) -> dict | None:
 
 def bank_is_current(name: str, directory=None) -> bool:
     bank = load_bank(name, directory)
-    return bank is not None and bank.get("sbs_sha256") == sbs_hash(name) and bank.get("descriptor") == DESCRIPTOR_KIND
+    return bank is not None and bank.get("graph_sha256") == graph_hash(name) and bank.get("descriptor") == DESCRIPTOR_KIND
 
 
 def nearest(bank: dict, descriptor: torch.Tensor, count: int = 1) -> list[dict]:

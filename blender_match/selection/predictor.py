@@ -40,8 +40,8 @@ import time
 import torch
 from torch import nn
 
-from .bank import (BANK_SEED, BANK_SIZE, SampleSpace, bank_is_current, describe, load_torch, models_dir,
-                   render_images, save_torch, sbs_hash, write_bank)
+from .bank import (BANK_SEED, BANK_SIZE, SampleSpace, bank_is_current, describe, graph_hash, load_torch,
+                   models_dir, render_images, save_torch, write_bank)
 from .descriptor import DESCRIPTOR_DIM, DESCRIPTOR_KIND, DESCRIPTOR_SIZE
 
 HIDDEN = 256
@@ -99,7 +99,7 @@ def read_meta(name: str, directory=None) -> dict | None:
 def predictor_is_current(name: str, directory=None) -> bool:
     weights, _, _ = predictor_paths(name, directory)
     meta = read_meta(name, directory)
-    return (meta is not None and weights.is_file() and meta.get("sbs_sha256") == sbs_hash(name)
+    return (meta is not None and weights.is_file() and meta.get("graph_sha256") == graph_hash(name)
             and meta.get("descriptor") == DESCRIPTOR_KIND)
 
 
@@ -269,14 +269,14 @@ def train_graph(name: str, samples: int = DEFAULT_SAMPLES, epochs: int = DEFAULT
     started = time.perf_counter()
     space = SampleSpace(name)
     space.graph.to(device)
-    P, digest = space.num_params, sbs_hash(name)
+    P, digest = space.num_params, graph_hash(name)
     config = {"bank_size": bank_size, "descriptor": DESCRIPTOR_KIND}  # examples are a prefix of the plan
     data = load_torch(checkpoint) if resume else None
-    if data is not None and data.get("sbs_sha256") == digest and data.get("config") == config:
+    if data is not None and data.get("graph_sha256") == digest and data.get("config") == config:
         for key in ("thetas", "descriptors", "images", "seeds"):
             data[key] = data[key][:samples]
     else:
-        data = {"sbs_sha256": digest, "config": config, "thetas": torch.zeros(0, P),
+        data = {"graph_sha256": digest, "config": config, "thetas": torch.zeros(0, P),
                 "descriptors": torch.zeros(0, DESCRIPTOR_DIM), "images": torch.zeros(0, 3, RENDER_SIZE, RENDER_SIZE).half(),
                 "seeds": torch.zeros(0, dtype=torch.int64), "seconds": 0.0}
     plan = _plan(name, samples, bank_size)
@@ -313,7 +313,7 @@ def train_graph(name: str, samples: int = DEFAULT_SAMPLES, epochs: int = DEFAULT
     err = _val_error(model, x[val_idx], y[val_idx], space.mask)
     err_default = float(masked_l1(space.default.expand(n_val, -1), y[val_idx], space.mask))
     meta = {
-        "graph": name, "sbs_sha256": digest, "descriptor": DESCRIPTOR_KIND, "descriptor_dim": DESCRIPTOR_DIM,
+        "graph": name, "graph_sha256": digest, "descriptor": DESCRIPTOR_KIND, "descriptor_dim": DESCRIPTOR_DIM,
         "params": P, "sampled_params": int(space.mask.sum()), "hidden": HIDDEN, "layers": LAYERS,
         "dtype": "float16", "training_samples": samples - n_val, "validation_samples": n_val,
         "bank_samples": bank_size, "epochs": epochs, "render_steps": render_steps, "render_size": RENDER_SIZE,

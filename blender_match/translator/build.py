@@ -15,7 +15,8 @@ the parsed package (model.py) to the IR (ir.py).
   exposed parameters (runtime getters, or their defaults in mode "all"), an inlined sub-graph's
   parameters (the instance's values), value pins (``#name``, fed by value processors), system
   variables (``$size``, ``$sizelog2``, ``$normalformat`` = 0 (DirectX), ``$time`` = 0). A graph that
-  still reads exposed parameters becomes a binding; otherwise it is folded to a constant.
+  becomes a binding (outside mode "all"), so the parameter is not optimised; a constant one is
+  folded into the value as well, so the graph evaluates the same without the binding.
 - Value outputs (value processors, value input bridges) do not travel as images: they are function
   graphs substituted into the consumers that read them.
 - Base parameters: ``randomseed`` becomes the node's seed (added to the inlining instance's seed);
@@ -596,7 +597,10 @@ class Builder:
             return
         ir.params[sp.name] = value
         rescaled = component is not None or adjusted is not raw
-        if fgs.free_variables(graph) and self.mode != "all" and sp.kind != "string" and not rescaled:
+        # a parameter a function drives is no slider in Substance: outside mode "all" it stays
+        # bound, constant functions included, so that it is never optimised (a dielectric's
+        # metallic 0 must not drift)
+        if self.mode != "all" and sp.kind != "string" and not rescaled:
             ir.bindings[sp.name] = graph
 
     def _array(self, ir: IRNode, spec, array: str, cells, label):

@@ -151,8 +151,9 @@ class SbsGraph(MaterialGraph):
         return self._batch is not None or any(t.requires_grad for t in self.exposed.theta.values())
 
     def _static(self, order, overrides):
-        if self.bindings and self._exposed_live():
-            overrides = {**overrides, **{n: {} for n in self.bindings}}
+        if self.bindings and self._exposed_live():  # constant bindings leave a node cacheable
+            overrides = {**overrides, **{n: {} for n, b in self.bindings.items()
+                                         if any(fgraph.variables_of(g) for g in b.values())}}
         return super()._static(order, overrides)
 
     # ---- the parameter vector ----------------------------------------------------------------

@@ -12,7 +12,7 @@ Exposed parameters: ``metal_color`` (sRGB tint), ``roughness``, ``brush_strength
 brushing in colour, roughness and relief), ``scratches`` (scratch visibility), ``smudges``
 (fingerprint amount), ``normal_intensity``.
 """
-from blender_match.library.authoring import set_material_outputs
+from blender_match.library.authoring import constant_map, set_material_outputs
 from blender_match.library.expressions import get, gray4, vector
 from blender_match.translator.runtime import SbsGraph
 
@@ -95,7 +95,7 @@ def build() -> SbsGraph:
     g.add("roughness", "blend", {"source": "scratch_mask", "destination": "rough_smudged"},
           blendingmode=2, opacitymult=0.25)
 
-    g.add("metallic", "uniform", colorswitch=False, outputcolor=[1.0, 1.0, 1.0, 1.0])
+    constant_map(g, "metallic", 1.0)
 
     set_material_outputs(g)
     return g
@@ -113,5 +113,4 @@ SAMPLE_RANGES = {
     "clouds.scale": (1.0, 3.0),
     "scratch_grain.intensity": (12.0, 32.0),
     "scratch_cross.mblurangle": (0.05, 0.45),
-    "metallic.outputcolor": (1.0, 1.0),
 }

@@ -11,7 +11,7 @@ Exposed parameters: ``matrix_color`` (sRGB), ``chip_density`` (how many chips sh
 ``chip_contrast`` (colour strength of the chips), ``roughness``, ``pores`` (amount of pores),
 ``normal_intensity``.
 """
-from blender_match.library.authoring import set_material_outputs
+from blender_match.library.authoring import constant_map, set_material_outputs
 from blender_match.library.expressions import get, vector
 from blender_match.translator.runtime import SbsGraph
 
@@ -80,7 +80,7 @@ def build() -> SbsGraph:
           blendingmode=4, opacitymult=0.06)
     g.add("roughness", "blend", {"source": "pores_blur", "destination": "rough_matrix"},
           blendingmode=1, opacitymult=0.4)
-    g.add("metallic", "uniform", colorswitch=False, outputcolor=[0.0, 0.0, 0.0, 1.0])
+    constant_map(g, "metallic", 0.0)
 
     # height
     g.add("chip_height", "histogram_range", {"input": "chip_mask"}, range=0.04, position=0.5)
@@ -103,5 +103,4 @@ SAMPLE_RANGES = {
     "chips_large.scale": (0.6, 1.2),
     "chips_small.scale": (0.4, 1.0),
     "chips_large_warp.intensity": (0.4, 2.5),
-    "metallic.outputcolor": (0.0, 0.0),
 }
