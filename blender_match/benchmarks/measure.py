@@ -97,7 +97,9 @@ def in_subprocess(function: str, *args, threads: int | None = None, timeout: flo
 
     threads = threads or torch.get_num_threads()
     module, _, name = function.partition(":")
-    code = ("import json, sys, torch\n"
+    code = ("from blender_match.allocator import keep_freed_memory\n"
+            "keep_freed_memory()\n"
+            "import json, sys, torch\n"
             f"torch.set_num_threads({int(threads)})\n"
             f"from {module} import {name} as f\n"
             f"r = f(*json.loads(sys.argv[1]))\n"

@@ -13,6 +13,8 @@ import importlib
 import pkgutil
 import sys
 
+from ..allocator import keep_freed_memory
+
 
 def _commands():
     for info in sorted(pkgutil.iter_modules(__path__), key=lambda m: m.name):
@@ -30,6 +32,7 @@ def build_parser() -> argparse.ArgumentParser:
 
 def main(argv: list[str] | None = None) -> int:
     args = build_parser().parse_args(argv)
+    keep_freed_memory()
     try:
         return int(args.run(args) or 0)
     except (ValueError, OSError) as exc:  # DiffMatError and the translator's errors are ValueErrors

@@ -26,6 +26,7 @@ import time
 import traceback
 from pathlib import Path
 
+from ..allocator import keep_freed_memory
 from . import protocol
 from .backend_setup import WORKER_IMPORTS
 
@@ -219,6 +220,7 @@ def classify(exc: BaseException) -> tuple[str, str]:
 
 
 def main() -> int:
+    keep_freed_memory()
     channel = Channel(claim_stdout())
     stdin = sys.stdin.buffer
     raw = stdin.readline()
