@@ -7,7 +7,10 @@ of a 2048² forward (5.0 s against 3.4 s with freed memory kept). PyTorch's CPU 
 guide gives the same advice (a caching allocator, or these glibc settings).
 
 ``keep_freed_memory()`` raises glibc's mmap and trim thresholds so freed blocks are reused; the
-process's peak memory is unchanged, it just is not returned before exit. The command line, the
+process's peak memory is unchanged, it just is not returned before exit. ``release_freed_memory()``
+hands the kept blocks back once (``malloc_trim``): benchmarks call it before measuring a peak, so
+that the resident-memory growth they read is what the measured run needs, not what an earlier
+run left in the pool. The command line, the
 worker and the benchmark subprocesses call it at start; a library user may too. Elsewhere
 (macOS, Windows, musl) it does nothing. No torch import: the worker calls it first.
 """
@@ -22,14 +25,30 @@ M_MMAP_THRESHOLD = -3
 LIMIT = 2**31 - 1          # mallopt takes an int: blocks above 2 GiB are still mapped directly
 
 
+def _glibc(function: str):
+    """``function`` of the C library on Linux, or None (another system, or a libc without it)."""
+    if not sys.platform.startswith("linux"):
+        return None
+    try:
+        return getattr(ctypes.CDLL(ctypes.util.find_library("c") or "libc.so.6"), function)
+    except (OSError, AttributeError):
+        return None
+
+
 def keep_freed_memory() -> bool:
     """Tune glibc's allocator (see the module docstring); True when it took effect."""
-    if not sys.platform.startswith("linux"):
-        return False
-    try:
-        libc = ctypes.CDLL(ctypes.util.find_library("c") or "libc.so.6")
-        mallopt = libc.mallopt
-    except (OSError, AttributeError):
+    mallopt = _glibc("mallopt")
+    if mallopt is None:
         return False
     mallopt.argtypes = (ctypes.c_int, ctypes.c_int)
     return bool(mallopt(M_MMAP_THRESHOLD, LIMIT)) and bool(mallopt(M_TRIM_THRESHOLD, LIMIT))
+
+
+def release_freed_memory() -> bool:
+    """Return the freed blocks the process keeps to the system now; True when it could."""
+    malloc_trim = _glibc("malloc_trim")
+    if malloc_trim is None:
+        return False
+    malloc_trim.argtypes = (ctypes.c_size_t,)
+    malloc_trim(0)
+    return True

@@ -6,6 +6,8 @@ import time
 from contextlib import contextmanager
 from pathlib import Path
 
+from ..allocator import release_freed_memory
+
 _STATUS = Path("/proc/self/status")
 _CLEAR_REFS = Path("/proc/self/clear_refs")
 
@@ -44,7 +46,8 @@ class Measurement:
 def measure(device: str = "cpu"):
     """Measure wall time and the peak memory added while the block runs.
 
-    CPU: peak resident set size above the resident size at entry (Linux resets the peak mark first).
+    CPU: peak resident set size above the resident size at entry (Linux resets the peak mark first,
+    after handing the freed memory the process keeps back to the system).
     CUDA: ``torch.cuda.max_memory_allocated`` above the allocation at entry.
     """
     import torch
@@ -55,6 +58,7 @@ def measure(device: str = "cpu"):
         torch.cuda.reset_peak_memory_stats()
         base = torch.cuda.memory_allocated()
     else:
+        release_freed_memory()  # what earlier runs left in the allocator's pool is not this run's
         _reset_peak()
         base = _current_rss_bytes()
     start = time.perf_counter()
