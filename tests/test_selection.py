@@ -159,6 +159,8 @@ def test_match_without_a_graph_selects_fits_and_reports(tmp_path):
     fitting = [e for e in events if e["stage"] == "fitting" and "loss" in e]
     assert fitting and all(e["graph_count"] == 3 and 1 <= e["graph_index"] <= 3 for e in fitting)
     assert [e["fraction"] for e in events] == sorted(e["fraction"] for e in events)
+    selecting = [e["fraction"] for e in events if e["stage"] == "selecting"]
+    assert selecting[-1] > selecting[0]  # the bar moves while the library is ranked
 
 
 def test_match_with_a_named_graph_reports_its_start(tmp_path):
