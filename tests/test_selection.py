@@ -152,6 +152,9 @@ def test_match_without_a_graph_selects_fits_and_reports(tmp_path):
     fitted = saved["fitted"]
     assert len(fitted) == 3 and [f["graph"] for f in fitted] == [e["graph"] for e in ranking[:3]]
     assert all(f["iterations"] >= 1 and f["loss_final"] >= 0 and f["seconds"] >= 0 for f in fitted)
+    # each graph's loss says how it was measured (a graph dropped after the probe: the probe's size)
+    assert all(f["loss_final"] == f["rounds"][-1]["loss_final"] and f["rounds"][-1]["measured_at"]["size"] > 0
+               for f in fitted)
     assert saved["graph"] in [f["graph"] for f in fitted]
     assert (tmp_path / "out" / "basecolor.png").is_file()
     stages = [e["stage"] for e in events]

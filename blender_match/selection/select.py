@@ -192,8 +192,12 @@ class Fitted:
     rounds: list = field(default_factory=list)
 
     def summary(self) -> dict:
+        """For report.json. ``loss_final`` is the last round's, measured as that round's last stage
+        measures: a graph dropped after the probe round was measured at the probe's size only, so
+        its loss does not compare with the survivors'; ``rounds`` says which measure each used."""
         return {"graph": self.graph, "loss_final": round(self.result.loss_final, 6), "seconds": round(self.seconds, 3),
-                "iterations": self.iterations, "start": self.start, "survived_probe": self.survived_probe}
+                "iterations": self.iterations, "start": self.start, "survived_probe": self.survived_probe,
+                "rounds": self.rounds}
 
 
 def _probe_schedule(schedule, iterations: int):
@@ -246,8 +250,10 @@ def select_and_fit(photo, k: int = 3, quality: str = "balanced", seed: int = 0, 
         f.result = result
         f.iterations += result.iterations
         f.seconds += result.seconds
+        last = sched.stages[-1]
         f.rounds.append({"schedule": sched.name, "iterations": result.iterations,
-                         "loss_final": round(result.loss_final, 6)})
+                         "loss_final": round(result.loss_final, 6),
+                         "measured_at": {"size": last.size, "scales": list(last.scales)}})
         return result
 
     survivors = list(range(len(fits)))
