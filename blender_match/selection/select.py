@@ -262,7 +262,9 @@ def select_and_fit(photo, k: int = 3, quality: str = "balanced", seed: int = 0, 
         for i, f in enumerate(fits):
             run(f, i, sched, ranking[i]["theta"])
         best = min(f.result.loss_final for f in fits)
-        ordered = sorted(survivors, key=lambda i: fits[i].result.loss_final)
+        probed = [{"index": i, "loss": fits[i].result.loss_final, "nodes": fits[i].nodes, "params": fits[i].params}
+                  for i in survivors]
+        ordered = [e["index"] for e in order_by_simplicity(probed, key="loss")]  # near-ties: simpler first
         keep = max(1, math.ceil(len(fits) / 2))
         survivors = [i for i in ordered[:keep] if fits[i].result.loss_final <= best * (1 + DROP_MARGIN)]
         for i, f in enumerate(fits):
