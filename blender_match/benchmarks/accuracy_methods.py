@@ -16,8 +16,8 @@ is asked for (``--quick``) and every stage of the capped schedule renders and de
 each budget is what the longest run had found after that many iterations (its anytime curve).
 Schedules are capped at the benchmark's evaluation size (``cap_schedule``).
 
-Prediction goes through ``Selection``, an adapter that imports ``blender_match.selection`` lazily
-and reports the method unavailable when the module or its models are missing.
+Prediction goes through ``Selection``, an adapter to ``blender_match.selection`` that reports the
+method unavailable when the graph's models are missing.
 """
 from __future__ import annotations
 
