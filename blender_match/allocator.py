@@ -7,12 +7,12 @@ of a 2048² forward (5.0 s against 3.4 s with freed memory kept). PyTorch's CPU 
 guide gives the same advice (a caching allocator, or these glibc settings).
 
 ``keep_freed_memory()`` raises glibc's mmap and trim thresholds so freed blocks are reused; the
-process's peak memory is unchanged, it just is not returned before exit. ``release_freed_memory()``
-hands the kept blocks back once (``malloc_trim``): benchmarks call it before measuring a peak, so
-that the resident-memory growth they read is what the measured run needs, not what an earlier
-run left in the pool. The command line, the
-worker and the benchmark subprocesses call it at start; a library user may too. Elsewhere
-(macOS, Windows, musl) it does nothing. No torch import: the worker calls it first.
+process's peak memory is unchanged, it just is not returned before exit. The command line, the
+worker and the benchmark subprocesses call it at start; a library user may too.
+``release_freed_memory()`` hands the kept blocks back once (``malloc_trim``): benchmarks call it
+before measuring a peak, so that the resident-memory growth they read is what the measured run
+needs, not what an earlier run left in the pool. Elsewhere (macOS, Windows, musl) both do
+nothing. No torch import: the worker calls this first.
 """
 from __future__ import annotations
 
