@@ -3,8 +3,9 @@
 The engine allocates and frees hundreds of image-sized buffers per evaluation (16 MiB per
 channel at 2048²). glibc serves such blocks with fresh ``mmap`` calls and unmaps them on free,
 so every buffer is paid again in page faults: on the 2-core reference machine that was a third
-of a 2048² forward (5.0 s against 3.4 s with freed memory kept). PyTorch's CPU performance
-guide gives the same advice (a caching allocator, or these glibc settings).
+of a 2048² forward (5.0 s against 3.4 s with freed memory kept). PyTorch's performance tuning
+guide recommends a caching allocator (jemalloc, TCMalloc) on CPU for the same reason; these two
+glibc settings get that effect without a preloaded library.
 
 ``keep_freed_memory()`` raises glibc's mmap and trim thresholds so freed blocks are reused; the
 process's peak memory is unchanged, it just is not returned before exit. The command line, the
