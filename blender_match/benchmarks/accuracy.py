@@ -64,12 +64,14 @@ FULL = Config(
              "bank+ours": (30, 60, 120), "es": (10, 20, 40)})
 
 # --quick: 4 graphs x 1 target + 1 real photo, scored and fitted at 128 px, every budget read from
-# the longest run, a few iterations each, the stress photos but "white" (like "black"): under
-# 15 minutes on an otherwise idle 2-core CPU.
+# the longest run, up to 16 iterations (8 generations of 4 for es), the stress photos but "white"
+# (like "black") at the smallest budget: about 6 minutes on an otherwise idle 2-core CPU (target:
+# under 15).
+QUICK_BUDGETS = (2, 6, 16)
 QUICK = Config(
     "quick", graphs=("asphalt", "leather", "bricks", "painted_metal"), real=("leather",), size=128,
-    budgets={"paper": (2, 4), "draft": (2, 4), "balanced": (2, 4), "best": (2, 4), "predict": (0,),
-             "predict+ours": (2, 4), "bank+ours": (2, 4), "es": (1, 3)},
+    budgets={"paper": QUICK_BUDGETS, "draft": QUICK_BUDGETS, "balanced": QUICK_BUDGETS, "best": QUICK_BUDGETS,
+             "predict": (0,), "predict+ours": QUICK_BUDGETS, "bank+ours": QUICK_BUDGETS, "es": (1, 3, 8)},
     extra_seeds=(1,), stress=tuple(k for k in STRESS_KINDS if k != "white"), es_population=4, prefix=True)
 
 
