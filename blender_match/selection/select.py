@@ -6,7 +6,8 @@ vector (the predictor's, the bank's nearest sample's, or both, keeping the bette
 graphs come best first, by that distance alone. Simplicity decides only the final choice among
 the fitted graphs (below): ordering near-ties by simplicity here pushed the true graph out of the
 top 3 on 2 of the 32 targets of ``bench selection`` (30/32 in the top 3 by distance, 28/32 with
-the tie rule), and a candidate fitted costs time but never the simpler answer.
+the tie rule), while fitting one more candidate costs time, never the simpler answer (the
+final choice still prefers it).
 
 ``select_and_fit(photo, k)``: the paper fits its top 3 graphs fully and keeps the best. We fit the
 top ``k`` from their predicted start under one shared budget, by successive halving: every
