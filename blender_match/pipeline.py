@@ -227,8 +227,10 @@ def match_photo(photo, out_dir, options: MatchOptions, progress=None, cancel=Non
     if options.iterations is not None:
         schedule = schedule.scaled(options.iterations)
     graph.to(device)
-    loss = TargetLoss(target.to(device), TextureDescriptor().to(device))
+    from .selection.descriptor import shared_vgg
     from .selection.select import choose_start
+
+    loss = TargetLoss(target.to(device), TextureDescriptor(vgg=shared_vgg(device)))  # choose_start shares it
 
     theta0, start = choose_start(graph, options.graph, loss, schedule, options.seed)
 

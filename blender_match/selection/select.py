@@ -126,8 +126,7 @@ def _rank(photo, method, seed, device, directory, graphs, progress, cancel, gram
         raise ValueError(NO_MODELS.format(where=models_dir(directory)))
     vgg = shared_vgg(device)
     if gram is None:
-        gram = TextureDescriptor(scales=(RANK_SIZE,))
-        gram.vgg = vgg
+        gram = TextureDescriptor(scales=(RANK_SIZE,), vgg=vgg)
     with torch.no_grad():
         descriptor = compact_descriptor(vgg, photo, DESCRIPTOR_SIZE)
         target = gram(resize_square(photo, RANK_SIZE), (RANK_SIZE,))
@@ -232,7 +231,7 @@ def select_and_fit(photo, k: int = 3, quality: str = "balanced", seed: int = 0, 
         ranking = _rank(photo, method, seed, device, directory, graphs, None, cancel)
     chosen = ranking[:k]
     if loss is None:
-        loss = TargetLoss(photo.to(device), TextureDescriptor().to(device))
+        loss = TargetLoss(photo.to(device), TextureDescriptor(vgg=shared_vgg(device)))
     total = max(len(chosen), round(schedule.iterations * budget_factor(len(chosen))))
     probe = max(1, round(schedule.iterations * PROBE_SHARE)) if len(chosen) > 1 else 0
     state = {"done": 0}
@@ -324,10 +323,8 @@ def match_auto(target, photo, out_dir, options, job, device) -> dict:
     _check_targets(out_dir, _NoMaps, options.overwrite)
     torch.manual_seed(options.seed)
     job.stage("selecting")
-    descriptor = TextureDescriptor().to(device)
-    descriptor.vgg = shared_vgg(device)
-    gram = TextureDescriptor(scales=(RANK_SIZE,))
-    gram.vgg = descriptor.vgg
+    descriptor = TextureDescriptor(vgg=shared_vgg(device))
+    gram = TextureDescriptor(scales=(RANK_SIZE,), vgg=descriptor.vgg)
 
     def on_rank(event):
         job.within((event["graph_index"] - 1) / event["graph_count"], **event)
