@@ -204,7 +204,7 @@ def match_photo(photo, out_dir, options: MatchOptions, progress=None, cancel=Non
     import torch
 
     from .diffmat.descriptor import TextureDescriptor
-    from .diffmat.optim import QUALITY_SCHEDULES, FitCancelled, TargetLoss, fit
+    from .diffmat.optim import FitCancelled, TargetLoss, fit, quality_schedule
     from .photo import load_photo
 
     if options.quality not in QUALITIES:
@@ -223,9 +223,7 @@ def match_photo(photo, out_dir, options: MatchOptions, progress=None, cancel=Non
     _check_targets(out_dir, graph, options.overwrite)
     torch.manual_seed(options.seed)
     job.stage("fitting", graph=graph.name, graph_index=1, graph_count=1)
-    schedule = QUALITY_SCHEDULES[options.quality]
-    if options.iterations is not None:
-        schedule = schedule.scaled(options.iterations)
+    schedule = quality_schedule(options.quality, options.iterations)
     graph.to(device)
     from .selection.descriptor import shared_vgg
     from .selection.select import choose_start

@@ -89,6 +89,12 @@ QUALITY_SCHEDULES = {
 }
 
 
+
+def quality_schedule(quality: str, iterations: int | None = None) -> Schedule:
+    """The ``quality`` preset (``QUALITY_SCHEDULES``), rescaled to ``iterations`` in all when given."""
+    schedule = QUALITY_SCHEDULES[quality]
+    return schedule if iterations is None else schedule.scaled(iterations)
+
 def resize_square(image: torch.Tensor, size: int) -> torch.Tensor:
     """An (N, C, S, S) image resized to ``size`` (antialiased when shrinking)."""
     if image.shape[-1] == size:

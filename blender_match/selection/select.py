@@ -219,14 +219,12 @@ def select_and_fit(photo, k: int = 3, quality: str = "balanced", seed: int = 0, 
     preset; ``progress`` gets {"graph", "graph_index", "graph_count", "iteration", "iterations",
     "loss", "eta_seconds"}; ``cancel()`` raises SelectionCancelled."""
     from ..diffmat.descriptor import TextureDescriptor
-    from ..diffmat.optim import QUALITY_SCHEDULES, FitCancelled, TargetLoss, fit
+    from ..diffmat.optim import FitCancelled, TargetLoss, fit, quality_schedule
 
     if k < 1:
         raise ValueError(f"k must be at least 1, got {k}")
     photo = _photo(photo)
-    schedule = QUALITY_SCHEDULES[quality]
-    if iterations is not None:
-        schedule = schedule.scaled(iterations)
+    schedule = quality_schedule(quality, iterations)
     if ranking is None:
         ranking = _rank(photo, method, seed, device, directory, graphs, None, cancel)
     chosen = ranking[:k]
@@ -314,7 +312,7 @@ def match_auto(target, photo, out_dir, options, job, device) -> dict:
     """``match_photo`` without a graph: rank, fit the top 3 under one budget, write the best.
     ``target`` is the loaded photo, ``job`` the pipeline's progress tracker."""
     from ..diffmat.descriptor import TextureDescriptor
-    from ..diffmat.optim import QUALITY_SCHEDULES, TargetLoss
+    from ..diffmat.optim import TargetLoss, quality_schedule
     from ..pipeline import MatchCancelled, MatchFailed, _check_targets, _write_result
 
     class _NoMaps:  # before a graph is chosen, only the files every match writes can be checked
@@ -349,9 +347,7 @@ def match_auto(target, photo, out_dir, options, job, device) -> dict:
         raise MatchFailed(f"graph {graph.name}: the fit diverged (non-finite parameters); nothing written")
     _check_targets(out_dir, graph, options.overwrite)
     job.stage("writing maps")
-    schedule = QUALITY_SCHEDULES[options.quality]
-    if options.iterations is not None:
-        schedule = schedule.scaled(options.iterations)
+    schedule = quality_schedule(options.quality, options.iterations)
     extra = {"photo": str(photo), "quality": options.quality, "loss_initial": round(result.loss_initial, 6),
              "loss_final": round(result.loss_final, 6), "iterations": sum(f.iterations for f in fits),
              "start": best.start,
