@@ -146,9 +146,17 @@ def load_bank(name: str, directory=None) -> dict | None:
     return load_torch(models_dir(directory) / f"{name}{BANK_SUFFIX}")
 
 
-def bank_is_current(name: str, directory=None) -> bool:
+def current_bank(name: str, directory=None) -> dict | None:
+    """A graph's bank when it is current (built from this .sbs/.json, with this descriptor), else
+    None: one read for the check and the use."""
     bank = load_bank(name, directory)
-    return bank is not None and bank.get("graph_sha256") == graph_hash(name) and bank.get("descriptor") == DESCRIPTOR_KIND
+    if bank is None or bank.get("graph_sha256") != graph_hash(name) or bank.get("descriptor") != DESCRIPTOR_KIND:
+        return None
+    return bank
+
+
+def bank_is_current(name: str, directory=None) -> bool:
+    return current_bank(name, directory) is not None
 
 
 def nearest(bank: dict, descriptor: torch.Tensor, count: int = 1) -> list[dict]:

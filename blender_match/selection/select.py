@@ -30,7 +30,7 @@ from dataclasses import dataclass, field
 
 import torch
 
-from .bank import bank_is_current, load_bank, nearest
+from .bank import bank_is_current, current_bank, nearest
 from .descriptor import DESCRIPTOR_SIZE, compact_descriptor, shared_vgg
 from .predictor import load_predictor, predictor_is_current
 
@@ -92,8 +92,8 @@ def _candidates(name, graph, descriptor, method, directory) -> list[tuple[str, t
         if model is not None and model.default.numel() == P:
             with torch.no_grad():
                 out.append(("predicted", model(descriptor.cpu())[0].clamp(0, 1)))
-    if method in ("bank", "both") and bank_is_current(name, directory):
-        bank = load_bank(name, directory)
+    if method in ("bank", "both"):
+        bank = current_bank(name, directory)
         if bank is not None and bank["thetas"].shape[1] == P:
             out.append(("bank", nearest(bank, descriptor.cpu())[0]["theta"]))
     return out
