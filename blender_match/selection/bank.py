@@ -9,8 +9,8 @@ adds its bank; nothing else is recomputed.
 
 Files: ``library/models/<name>.bank.pt``, a ``torch.save`` of plain tensors, strings and numbers
 (``torch.load(..., weights_only=True)`` reads it): ``descriptors`` (N, D) float16, ``thetas``
-(N, P) float32, ``indices`` (the sample indices k), and what makes it current: the graph's
-``.sbs`` SHA-256, the descriptor kind, the render size and seed.
+(N, P) float32, ``indices`` (the sample indices k), and what makes it current: the SHA-256 of
+the graph's ``.sbs`` and ``.json`` (``graph_hash``), the descriptor kind; and the render size and seed.
 
 This module also holds what the bank and the predictor's training share: the models folder,
 the staleness hash, parameter vectors of samples and rendering + describing them.

@@ -27,8 +27,8 @@ Training is resumable: ``<name>.train.pt`` in the models folder checkpoints the 
 so far (``resume=True`` continues from them); it is deleted when the graph is done (unless
 ``keep_data``: then ``resume=True`` re-trains the network on the same examples in seconds).
 Outputs: ``<name>.predictor.pt`` (a state_dict, ``torch.load(weights_only=True)``) and
-``<name>.predictor.json`` (metadata: sizes, the training figures and the graph's .sbs SHA-256,
-which tells when the model is stale).
+``<name>.predictor.json`` (metadata: sizes, the training figures and ``graph_hash``, the SHA-256
+of the graph's .sbs and .json, which tells when the model is stale).
 """
 from __future__ import annotations
 
