@@ -139,22 +139,25 @@ def _run_schedule(graph, loss, schedule, budgets, cap, seed, start, extra_second
     return _prefix_points(result, start, budgets, m.peak_bytes, evaluated_points=True, extra_seconds=extra_seconds)
 
 
+def _schedule_of(method: str) -> Schedule | None:
+    """The gradient schedule ``method`` runs (None: prediction only, or the evolution strategy)."""
+    if method == "paper":
+        return PAPER_SCHEDULE
+    if method in QUALITY_SCHEDULES:
+        return QUALITY_SCHEDULES[method]
+    if method.endswith("+ours"):
+        return QUALITY_SCHEDULES[REFINE_PRESET]
+    return None
+
+
 def fit_sizes(methods, cap: int) -> set[tuple[int, tuple[int, ...]]]:
     """(size, scales) every fit of ``methods`` renders and describes at (for warming caches up)."""
     out = set()
     for method in methods:
         if method == "es":
             out.add((min(128, cap), (min(128, cap),)))
-            continue
-        if method == "paper":
-            schedule = PAPER_SCHEDULE
-        elif method in QUALITY_SCHEDULES:
-            schedule = QUALITY_SCHEDULES[method]
-        elif method.endswith("+ours"):
-            schedule = QUALITY_SCHEDULES[REFINE_PRESET]
-        else:
-            continue
-        out |= {(s.size, s.scales) for s in cap_schedule(schedule, cap).stages}
+        elif (schedule := _schedule_of(method)) is not None:
+            out |= {(s.size, s.scales) for s in cap_schedule(schedule, cap).stages}
     return out
 
 
@@ -175,8 +178,7 @@ def run_method(method: str, graph, loss, budgets, *, cap: int, seed: int = 0, de
                             seed=seed, theta0=default)
         return _prefix_points(result, default, budgets, m.peak_bytes, evaluated_points=False)
     if method in QUALITY_SCHEDULES:
-        return _run_schedule(graph, loss, QUALITY_SCHEDULES[method], budgets, cap, seed, default, 0.0, device,
-                             prefix)
+        return _run_schedule(graph, loss, _schedule_of(method), budgets, cap, seed, default, 0.0, device, prefix)
     if method in ("predict", "predict+ours", "bank+ours"):
         selection = selection or Selection(device)
         kind = "bank" if method.startswith("bank") else "predictor"
@@ -188,8 +190,7 @@ def run_method(method: str, graph, loss, budgets, *, cap: int, seed: int = 0, de
                               f"{default.numel()}")
         if method == "predict":
             return [Point(0, start, seconds, 0, m.peak_bytes, default)]
-        return _run_schedule(graph, loss, QUALITY_SCHEDULES[REFINE_PRESET], budgets, cap, seed, start, seconds,
-                             device, prefix)
+        return _run_schedule(graph, loss, _schedule_of(method), budgets, cap, seed, start, seconds, device, prefix)
     raise ValueError(f"unknown method {method!r} (methods: {', '.join(METHODS)})")
 
 
