@@ -96,16 +96,25 @@ def render_flash(basecolor: torch.Tensor, normal: torch.Tensor | None = None,
     wi = to_light / dist2.sqrt()
 
     cos = (nrm * wi).sum(dim=1, keepdim=True).clamp_min(EPS)  # n.l = n.v = n.h (co-located)
+    irradiance = param4d(camera.power * math.pi * d * d, like) / dist2 * cos
+    return linear_to_srgb(_brdf(albedo, rough, metal, cos, cos, cos) * irradiance)
+
+
+def _brdf(albedo, rough, metal, n_l, n_v, n_h, v_h=None) -> torch.Tensor:
+    """Diffuse + GGX specular (Smith shadowing in the Schlick-GGX form, Schlick's Fresnel) from
+    the clamped cosines. ``v_h`` None is the co-located case: v.h = 1, so the Fresnel term is F0
+    and the two Smith terms are one."""
     alpha = (rough.clamp(0.02, 1.0)) ** 2
     a2 = alpha ** 2
-    ggx = a2 / (math.pi * ((cos ** 2) * (a2 - 1) + 1) ** 2)
+    ggx = a2 / (math.pi * ((n_h ** 2) * (a2 - 1) + 1) ** 2)
     k = alpha / 2
-    g1 = cos / (cos * (1 - k) + k)
-    f0 = 0.04 * (1 - metal) + albedo * metal  # v.h = 1: Schlick's Fresnel is F0
-    specular = ggx * f0 * g1 * g1 / (4 * cos * cos)
+    g_l = n_l / (n_l * (1 - k) + k)
+    g_v = g_l if n_v is n_l else n_v / (n_v * (1 - k) + k)
+    f0 = 0.04 * (1 - metal) + albedo * metal
+    fresnel = f0 if v_h is None else f0 + (1 - f0) * (1 - v_h) ** 5
+    specular = ggx * fresnel * g_l * g_v / (4 * n_l * n_v)
     diffuse = albedo * (1 - metal) / math.pi
-    irradiance = param4d(camera.power * math.pi * d * d, like) / dist2 * cos
-    return linear_to_srgb((diffuse + specular) * irradiance)
+    return diffuse + specular
 
 
 def _render_offset_light(albedo, nrm, rough, metal, camera: FlashCamera, x, y, light_offset) -> torch.Tensor:
@@ -125,18 +134,8 @@ def _render_offset_light(albedo, nrm, rough, metal, camera: FlashCamera, x, y, l
     n_v = (nrm * wo).sum(dim=1, keepdim=True).clamp_min(EPS)
     n_h = (nrm * half).sum(dim=1, keepdim=True).clamp_min(EPS)
     v_h = (wo * half).sum(dim=1, keepdim=True).clamp(0.0, 1.0)
-    alpha = (rough.clamp(0.02, 1.0)) ** 2
-    a2 = alpha ** 2
-    ggx = a2 / (math.pi * ((n_h ** 2) * (a2 - 1) + 1) ** 2)
-    k = alpha / 2
-    g_l = n_l / (n_l * (1 - k) + k)
-    g_v = n_v / (n_v * (1 - k) + k)
-    f0 = 0.04 * (1 - metal) + albedo * metal
-    fresnel = f0 + (1 - f0) * (1 - v_h) ** 5
-    specular = ggx * fresnel * g_l * g_v / (4 * n_l * n_v)
-    diffuse = albedo * (1 - metal) / math.pi
     irradiance = param4d(camera.power * math.pi * d * d, albedo) / dist2 * n_l
-    return linear_to_srgb((diffuse + specular) * irradiance)
+    return linear_to_srgb(_brdf(albedo, rough, metal, n_l, n_v, n_h, v_h) * irradiance)
 
 
 def render_maps(maps: dict[str, torch.Tensor], camera: FlashCamera = FlashCamera(),
