@@ -23,6 +23,7 @@ from dataclasses import dataclass
 import torch
 
 from ..diffmat.descriptor import style_loss
+from ..diffmat.optim import resize_square
 from ..diffmat.render import render_maps
 
 NOVEL_LIGHT = (0.5, 0.25)  # light offset from the camera, in sample widths (x right, y up)
@@ -98,7 +99,7 @@ class Scorer:
         self.truth = truth
         self.fit_seed = fit_seed
         with torch.no_grad():
-            self.target = descriptor(_resize(photo, size), self.scales)
+            self.target = descriptor(resize_square(photo, size), self.scales)
 
     def score(self, graph, theta: torch.Tensor, seed: int | None = None) -> dict:
         """{"descriptor_loss", and with a truth "param_error", "map_rmse" {name: rmse},
@@ -117,12 +118,6 @@ class Scorer:
                 out["map_rmse_mean"] = sum(rmse.values()) / len(rmse) if rmse else math.nan
                 out["novel_rmse"] = image_rmse(render_maps(maps, light_offset=NOVEL_LIGHT)[:1], self.truth.novel)
         return out
-
-
-def _resize(photo: torch.Tensor, size: int) -> torch.Tensor:
-    from ..diffmat.optim import resize_square
-
-    return resize_square(photo, size)
 
 
 def finite(*values) -> bool:
