@@ -119,7 +119,7 @@ def stress(kind: str, graph: str, size: int, k: int = 901) -> Target:
     from ..photo import PhotoError, load_photo
 
     if kind == "wrong_family":
-        wood = [p for p in real_photos(("wood",))]
+        wood = real_photos(("wood",))
         if not wood:
             raise FileNotFoundError(f"no real wood photo under {photos_dir()}")
         target = real(wood[0], "bricks", size, group="stress", kind="wrong_family")
