@@ -241,18 +241,26 @@ def match_photo(photo, out_dir, options: MatchOptions, progress=None, cancel=Non
         result = fit(graph, loss, schedule, seed=options.seed, theta0=theta0, progress=on_step, cancel=job.cancel)
     except FitCancelled:
         raise MatchCancelled() from None
-    if not torch.isfinite(result.theta).all():
-        raise MatchFailed(f"graph {graph.name}: the fit diverged (non-finite parameters); nothing written")
+    fitted = _fit_report(graph, result, schedule, photo, options.quality, start)
     graph.set_vector(result.theta)
     graph.clear_cache()
     job.stage("writing maps")
-    fitted = {"photo": str(photo), "quality": options.quality, "loss_initial": round(result.loss_initial, 6),
-              "loss_final": round(result.loss_final, 6), "iterations": result.iterations, "start": start,
-              "fit": {"schedule": schedule.name, "stopped": result.stopped,
-                      "stage_seconds": [round(s, 3) for s in result.stage_seconds],
-                      "parameters": graph.num_params()}}
     return _write_result(graph, out_dir, size, options.seed, device, options.overwrite, job, photo=target,
                          report_extra=fitted)
+
+
+def _fit_report(graph, result, schedule, photo, quality: str, start: str) -> dict:
+    """The fit's part of report.json (a named graph's or the kept one of automatic selection);
+    raises MatchFailed when the fit diverged, before anything is written."""
+    import torch
+
+    if not torch.isfinite(result.theta).all():
+        raise MatchFailed(f"graph {graph.name}: the fit diverged (non-finite parameters); nothing written")
+    return {"photo": str(photo), "quality": quality, "loss_initial": round(result.loss_initial, 6),
+            "loss_final": round(result.loss_final, 6), "iterations": result.iterations, "start": start,
+            "fit": {"schedule": schedule.name, "stopped": result.stopped,
+                    "stage_seconds": [round(s, 3) for s in result.stage_seconds],
+                    "parameters": graph.num_params()}}
 
 
 def render_params(params_file, out_dir, size: int, device: str = "auto", overwrite: bool = False,

@@ -313,7 +313,7 @@ def match_auto(target, photo, out_dir, options, job, device) -> dict:
     ``target`` is the loaded photo, ``job`` the pipeline's progress tracker."""
     from ..diffmat.descriptor import TextureDescriptor
     from ..diffmat.optim import TargetLoss, quality_schedule
-    from ..pipeline import MatchCancelled, MatchFailed, _check_targets, _write_result
+    from ..pipeline import MatchCancelled, _check_targets, _fit_report, _write_result
 
     class _NoMaps:  # before a graph is chosen, only the files every match writes can be checked
         outputs: dict = {}
@@ -342,20 +342,15 @@ def match_auto(target, photo, out_dir, options, job, device) -> dict:
                                     iterations=options.iterations, ranking=ranking, loss=loss)
     except SelectionCancelled:
         raise MatchCancelled() from None
-    graph, result = best.material, best.result
-    if not torch.isfinite(result.theta).all():
-        raise MatchFailed(f"graph {graph.name}: the fit diverged (non-finite parameters); nothing written")
+    graph = best.material
+    schedule = quality_schedule(options.quality, options.iterations)
+    extra = _fit_report(graph, best.result, schedule, photo, options.quality, best.start)
     _check_targets(out_dir, graph, options.overwrite)
     job.stage("writing maps")
-    schedule = quality_schedule(options.quality, options.iterations)
-    extra = {"photo": str(photo), "quality": options.quality, "loss_initial": round(result.loss_initial, 6),
-             "loss_final": round(result.loss_final, 6), "iterations": sum(f.iterations for f in fits),
-             "start": best.start,
-             "fit": {"schedule": schedule.name, "stopped": result.stopped,
-                     "stage_seconds": [round(s, 3) for s in result.stage_seconds],
-                     "parameters": graph.num_params(), "budget_iterations": round(schedule.iterations * budget_factor(len(fits)))},
-             "ranking": [{"graph": e["graph"], "distance": round(e["distance"], 6), "start": e["start"]}
-                         for e in ranking],
-             "fitted": [f.summary() for f in fits]}
+    extra["iterations"] = sum(f.iterations for f in fits)  # every candidate's, not only the kept one's
+    extra["fit"]["budget_iterations"] = round(schedule.iterations * budget_factor(len(fits)))
+    extra["ranking"] = [{"graph": e["graph"], "distance": round(e["distance"], 6), "start": e["start"]}
+                        for e in ranking]
+    extra["fitted"] = [f.summary() for f in fits]
     return _write_result(graph, out_dir, options.size, options.seed, device, options.overwrite, job, photo=target,
                          report_extra=extra)
