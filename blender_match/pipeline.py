@@ -203,8 +203,7 @@ def match_photo(photo, out_dir, options: MatchOptions, progress=None, cancel=Non
     """Fit ``options.graph`` to the photo and write the result folder (see the module docstring)."""
     import torch
 
-    from .diffmat.descriptor import TextureDescriptor
-    from .diffmat.optim import FitCancelled, TargetLoss, fit, quality_schedule
+    from .diffmat.optim import FitCancelled, quality_schedule
     from .photo import load_photo
 
     if options.quality not in QUALITIES:
@@ -224,13 +223,6 @@ def match_photo(photo, out_dir, options: MatchOptions, progress=None, cancel=Non
     torch.manual_seed(options.seed)
     job.stage("fitting", graph=graph.name, graph_index=1, graph_count=1)
     schedule = quality_schedule(options.quality, options.iterations)
-    graph.to(device)
-    from .selection.descriptor import shared_vgg
-    from .selection.select import choose_start
-
-    loss = TargetLoss(target.to(device), TextureDescriptor(vgg=shared_vgg(device)))  # choose_start shares it
-
-    theta0, start = choose_start(graph, options.graph, loss, schedule, options.seed)
 
     def on_step(event):
         job.within(event["iteration"] / schedule.iterations, event["eta_seconds"], graph=graph.name,
@@ -238,7 +230,8 @@ def match_photo(photo, out_dir, options: MatchOptions, progress=None, cancel=Non
                    loss=round(event["loss"], 6))
 
     try:
-        result = fit(graph, loss, schedule, seed=options.seed, theta0=theta0, progress=on_step, cancel=job.cancel)
+        result, start, _ = fit_named_graph(graph, options.graph, target, schedule, options.seed, device,
+                                        progress=on_step, cancel=job.cancel)
     except FitCancelled:
         raise MatchCancelled() from None
     fitted = _fit_report(graph, result, schedule, photo, options.quality, start)
@@ -247,6 +240,24 @@ def match_photo(photo, out_dir, options: MatchOptions, progress=None, cancel=Non
     job.stage("writing maps")
     return _write_result(graph, out_dir, size, options.seed, device, options.overwrite, job, photo=target,
                          report_extra=fitted)
+
+
+def fit_named_graph(graph, name: str, target, schedule, seed: int, device, progress=None, cancel=None):
+    """Fit ``graph`` (the graph called ``name``) to the photo tensor ``target`` from the start the
+    product chooses (default, bank or predicted parameters: ``choose_start``): (FitResult, the
+    start's name, the start's parameter vector). The graph is moved to ``device`` and its parameters are left unchanged."""
+    from .diffmat.descriptor import TextureDescriptor
+    from .diffmat.optim import TargetLoss, fit
+    from .selection.descriptor import shared_vgg
+    from .selection.select import choose_start
+
+    graph.to(device)
+    loss = TargetLoss(target.to(device), TextureDescriptor(vgg=shared_vgg(device)))  # choose_start shares it
+    theta0, start = choose_start(graph, name, loss, schedule, seed)
+    if theta0 is None:
+        theta0 = graph.get_vector()
+    result = fit(graph, loss, schedule, seed=seed, theta0=theta0, progress=progress, cancel=cancel)
+    return result, start, theta0.detach().cpu()
 
 
 def _fit_report(graph, result, schedule, photo, quality: str, start: str) -> dict:

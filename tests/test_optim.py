@@ -137,6 +137,25 @@ def test_schedules_are_well_formed():
         SMALL.scaled(0)
 
 
+def test_every_preset_renders_at_the_photo_size():
+    """A graph rendered below the photo's size is not the photo shrunk (fine relief shades
+    non-linearly): every stage renders at the size the pipeline gives the photo."""
+    from blender_match.pipeline import PHOTO_SIZE
+
+    assert {s.size for schedule in QUALITY_SCHEDULES.values() for s in schedule.stages} == {PHOTO_SIZE}
+
+
+def test_a_render_is_never_larger_than_the_photo(descriptor):
+    """A 64-px photo: a stage of 512 px described at 512/256/128 renders and describes at 64."""
+    graph = start_graph()
+    loss = TargetLoss(target_photo(size=64), TextureDescriptor(scales=(64,), vgg=descriptor.vgg))
+    theta = graph.get_vector()[None]
+    with torch.no_grad():
+        capped = loss(graph, theta, 512, (512, 256, 128))
+        direct = loss(graph, theta, 64, (64,))
+    assert torch.equal(capped, direct)
+
+
 def test_nothing_to_fit_is_an_error(descriptor):
     graph = start_graph()
     graph.freeze("*")

@@ -2,7 +2,7 @@
 curves, the spread over seeds and the outcome on every stress target, as Markdown."""
 from __future__ import annotations
 
-import math
+from .markdown import table
 
 SUMMARY_COLUMNS = (("method", "method", None), ("budget", "best budget (its)", None), ("targets", "targets", None),
                    ("seconds", "time (s)", ".1f"),
@@ -10,24 +10,6 @@ SUMMARY_COLUMNS = (("method", "method", None), ("budget", "best budget (its)", N
                    ("param_error", "param error", ".4f"), ("map_rmse", "map RMSE", ".4f"),
                    ("novel_rmse", "novel-light RMSE", ".4f"), ("peak_mb", "peak MB", ".0f"),
                    ("failure_rate", "failure rate", ".0%"), ("degraded_rate", "degraded", ".0%"))
-
-
-def _cell(value, fmt) -> str:
-    if value is None:
-        return "–"
-    if isinstance(value, float):
-        if not math.isfinite(value):
-            return str(value)
-        return format(value, fmt or ".4g")
-    return str(value)
-
-
-def table(rows: list[dict], columns) -> str:
-    lines = ["| " + " | ".join(title for _, title, _ in columns) + " |",
-             "|" + "|".join("---" for _ in columns) + "|"]
-    for row in rows:
-        lines.append("| " + " | ".join(_cell(row.get(key), fmt) for key, _, fmt in columns) + " |")
-    return "\n".join(lines)
 
 
 def _summary_rows(result: dict) -> list[dict]:

@@ -4,7 +4,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-SUITES = ("nodes", "translator", "library", "match", "accuracy", "selection")
+SUITES = ("nodes", "translator", "library", "match", "accuracy", "selection", "recovery", "photos")
 
 
 def add_parser(sub):
@@ -16,9 +16,14 @@ def add_parser(sub):
     p.add_argument("--files", nargs="+", type=Path, help="input files, for suites that take them (translator)")
     p.add_argument("--graphs", nargs="+", help="library graphs to use (match, accuracy)")
     p.add_argument("--paper-iterations", type=int, help="iterations of the paper's optimiser (match)")
-    p.add_argument("--quality", help="our preset to compare (match)")
-    p.add_argument("--quick", action="store_true", help="a small subset that runs in minutes (accuracy)")
-    p.add_argument("--out", type=Path, help="folder for results.json, results.md and charts (accuracy)")
+    p.add_argument("--quality", help="our preset to compare (match), the preset to use (photos)")
+    p.add_argument("--quick", action="store_true",
+                   help="a small subset that runs in minutes (accuracy, recovery; photos: the draft preset)")
+    p.add_argument("--photos", type=Path, help="folder of photos to match (photos; default ../shared/data/photos_dev)")
+    p.add_argument("--iterations", type=int,
+                   help="iterations of each fit, rescaling the quality preset (photos, recovery, selection)")
+    p.add_argument("--out", type=Path,
+                   help="folder for results.json, results.md and charts (accuracy, recovery, photos)")
     p.add_argument("--json", action="store_true", help="print rows as JSON")
     p.set_defaults(run=run)
 
@@ -43,12 +48,14 @@ def run(args) -> int:
     args.what = args.what or ("accuracy" if args.out else "nodes")
     module = importlib.import_module(f"blender_match.benchmarks.{args.what}")
     options = {"files": args.files, "graphs": args.graphs, "paper_iterations": args.paper_iterations,
-               "quality": args.quality, "quick": args.quick or None, "out": args.out}
+               "quality": args.quality, "quick": args.quick or None, "out": args.out, "photos": args.photos,
+               "iterations": args.iterations}
     extra = {k: v for k, v in options.items() if v is not None}
     rows = module.run(device=args.device, **extra)
     if args.json:
         print(json.dumps(rows, indent=1))
     else:
         print(f"bench {args.what}: device {args.device}, torch threads {torch.get_num_threads()}")
-        print_table(rows)
+        if rows:
+            print_table(rows)
     return 0

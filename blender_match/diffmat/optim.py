@@ -7,9 +7,15 @@ the parameters are clamped to [0, 1] after every step, as in the paper.
 The paper's optimiser renders at 512 px and describes at 512/256/128 every iteration with a fixed
 learning rate of 5e-4 (``PAPER_SCHEDULE``). Ours (``QUALITY_SCHEDULES``) reaches the same loss
 sooner by
-- coarse to fine: most iterations render at 128 px and describe at 128 only (the graph is
-  resolution independent, so the parameters carry over), then a few refine at 256 (and 512 for
-  ``best``);
+- describing coarse to fine: most iterations describe the render at 128 px only, then a few at 256
+  and 128 (and 512 for ``best``). Every stage still *renders* at the photo's size (512 px): a
+  graph rendered at 128 px is not the photo shrunk to 128, because the flash shading of fine
+  relief does not average linearly (a height map's fine detail tilts the normals only at the
+  resolution that holds it, so most library graphs render 5-20% brighter at 128 than at 512
+  shrunk to 128). A fit whose early stages rendered at 128 px darkened the material to compensate
+  and lost its fine grain, and came out too dark at the size the maps are written. Describing
+  costs more than rendering (VGG19 at 128 px is about 0.4 s of a 0.85 s step at 512), so this
+  keeps most of the speed;
 - larger learning rates with a cosine decay inside each stage;
 - early stopping on a plateau (no relative improvement of the best loss for ``patience``
   iterations ends the stage);
@@ -79,15 +85,15 @@ class Schedule:
 PAPER_SCHEDULE = Schedule("paper", (Stage(512, (512, 256, 128), 2000, 5e-4, final_lr_ratio=1.0),))
 
 # Learning rates measured on synthetic targets of plaster and bricks (60 steps at 128 px from the
-# defaults): 0.02 was best or within noise of the best on both; 0.04 lost 8-20% on bricks.
+# defaults): 0.02 was best or within noise of the best on both; 0.04 lost 8-20% on bricks. Stage
+# sizes and iteration counts: `blender-match bench recovery` (docs/matching.md).
 QUALITY_SCHEDULES = {
-    "draft": Schedule("draft", (Stage(128, (128,), 80, 0.02, warmup=5),), patience=20),
-    "balanced": Schedule("balanced", (Stage(128, (128,), 200, 0.02, warmup=5),
-                                      Stage(256, (256, 128), 40, 0.008)), patience=25),
-    "best": Schedule("best", (Stage(128, (128,), 300, 0.02, warmup=5), Stage(256, (256, 128), 120, 0.008),
+    "draft": Schedule("draft", (Stage(512, (128,), 48, 0.02, warmup=5),), patience=15),
+    "balanced": Schedule("balanced", (Stage(512, (128,), 120, 0.02, warmup=5),
+                                      Stage(512, (256, 128), 30, 0.008)), patience=25),
+    "best": Schedule("best", (Stage(512, (128,), 200, 0.02, warmup=5), Stage(512, (256, 128), 80, 0.008),
                               Stage(512, (512, 256, 128), 30, 0.003)), patience=40),
 }
-
 
 
 def quality_schedule(quality: str, iterations: int | None = None) -> Schedule:
@@ -124,7 +130,12 @@ class TargetLoss:
         return next(self.descriptor.parameters()).device
 
     def __call__(self, graph, theta: torch.Tensor, size: int, scales: tuple[int, ...], seed: int = 0):
-        """Loss of each parameter vector in ``theta`` (B, P) rendered at ``size``: a (B,) tensor."""
+        """Loss of each parameter vector in ``theta`` (B, P) rendered at ``size`` (at most the photo's
+        own size; ``scales`` are capped the same way): a (B,) tensor."""
+        side = self.photo.shape[-1]
+        if size > side:
+            size = side
+            scales = tuple(dict.fromkeys(min(s, side) for s in scales))
         maps = graph(size=size, seed=seed, theta=theta)
         image = render_maps(maps, self.camera)
         if image.shape[0] != theta.shape[0]:

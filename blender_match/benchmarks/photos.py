@@ -1,0 +1,254 @@
+"""``blender-match bench photos``: automatic matching on every photo of a folder of real photos.
+
+What a user gets from ``blender-match match PHOTO`` without ``--graph``, on photos that have no
+ground truth. Each photo (every ``*.jpg``, ``*.jpeg`` and ``*.png`` of the folder, sorted; by
+default ``../shared/data/photos_dev``, never part of the project) is read as ``match`` reads it
+(``load_photo`` at ``PHOTO_SIZE``) and goes through the product's automatic path
+(``select_and_fit``: every library graph ranked by its predicted start, the top 3 fitted under one
+shared budget, the best kept; graph seed ``SEED``). Per photo the row gives:
+
+- ``graph`` (the kept graph), ``top3`` (the ranking's first three, the ones fitted) and
+  ``family_match``: whether the kept graph belongs to the photo's category's family in
+  ``photo_categories.json`` (the table says per category which graphs count, and why; a category
+  with an empty family, or one not in the table, is one the library cannot express: always a miss);
+- ``seconds``: wall time of selection and fitting (the photo's reading, the render below and the
+  maps ``match`` writes afterwards are not part of it);
+- ``loss``: the kept fit's final descriptor loss, the quantity the fit minimises;
+- ``patch_distance`` and ``colour_distance`` (``image_distances``: yardsticks no fit minimises)
+  between the photo and the kept material rendered under the flash at ``PHOTO_SIZE`` with the
+  fit's seed.
+
+A photo's category is the first attribute of its line in the folder's ``SOURCES.tsv`` (columns
+``file`` and ``attributes``; ``-`` means misc) or, without one, the first ``_``-separated word of
+its name that is a category of the table (``real_asphalt_gravel_desch18.png``: asphalt), else its
+first word. A photo that fails (unreadable, a fit error) gets its error in its row, counts as a
+miss and the run goes on. The summary: photos, the share of family matches, the medians of the
+two distances and of the seconds, the total seconds. With ``out``: ``results.json`` (config, rows,
+summary), ``results.md`` (the tables; the photos themselves never go into it) and ``sheet.png``
+(per photo: photo | render | the kept graph, category and match). ``quick``: the draft preset.
+"""
+from __future__ import annotations
+
+import csv
+import io
+import json
+import statistics
+import sys
+import time
+from pathlib import Path
+
+import torch
+
+from .markdown import table
+
+CATEGORIES_FILE = Path(__file__).with_name("photo_categories.json")
+SUFFIXES = (".jpg", ".jpeg", ".png")
+MISC = "misc"
+K = 3
+SEED = 0
+TILE = 192
+COLUMNS = ("photo", "category", "graph", "top3", "family_match", "seconds", "loss", "patch_distance",
+           "colour_distance", "error")
+
+
+def default_photos() -> Path:
+    """``photos_dev`` beside the bundled real photos in shared/ (``BLENDER_MATCH_SHARED`` honoured)."""
+    from .accuracy_targets import photos_dir
+
+    return photos_dir().parent / "photos_dev"
+
+
+def load_families(path: Path = CATEGORIES_FILE) -> dict[str, list[str]]:
+    """Category -> the library graphs that count as its family."""
+    try:
+        table = json.loads(Path(path).read_text(encoding="utf-8"))["categories"]
+        return {category: list(entry["graphs"]) for category, entry in table.items()}
+    except (OSError, ValueError, KeyError, TypeError) as exc:
+        raise ValueError(f"{path}: not a photo category table ({exc})") from None
+
+
+def find_photos(folder: Path) -> list[Path]:
+    """The folder's photos, sorted; [] when it is absent."""
+    if not folder.is_dir():
+        return []
+    return sorted(p for p in folder.iterdir() if p.is_file() and p.suffix.lower() in SUFFIXES)
+
+
+def listed_categories(folder: Path) -> dict[str, str]:
+    """File name -> main category (first of ``attributes``, ``-`` -> misc) from the folder's
+    SOURCES.tsv; {} when it has none or no such columns (the bundled set lists no attributes)."""
+    path = folder / "SOURCES.tsv"
+    if not path.is_file():
+        return {}
+    with path.open(newline="", encoding="utf-8") as f:
+        reader = csv.DictReader(f, delimiter="\t", quoting=csv.QUOTE_NONE)
+        if not {"file", "attributes"} <= set(reader.fieldnames or ()):
+            return {}
+        out = {}
+        for line in reader:
+            main = (line["attributes"] or "").split(",")[0].strip().lower()
+            out[line["file"]] = MISC if main in ("", "-") else main
+    return out
+
+
+def name_category(stem: str, known) -> str:
+    """The first ``_``-separated word of ``stem`` that is a ``known`` category, else its first word."""
+    words = stem.lower().split("_")
+    return next((w for w in words if w in known), words[0])
+
+
+def evaluate(photo: torch.Tensor, quality: str, iterations: int | None, device) -> tuple[dict, torch.Tensor]:
+    """Automatic selection and fitting of ``photo`` (1, 3, S, S) as ``match`` without ``--graph``
+    does: the row's measured fields and the kept material's flash render (1, 3, S, S)."""
+    from ..diffmat.render import render_maps
+    from ..selection.select import select_and_fit
+    from .image_distances import colour_distance, patch_distance
+
+    torch.manual_seed(SEED)  # as match_auto does
+    started = time.perf_counter()
+    best, fits = select_and_fit(photo, K, quality, SEED, device=device, iterations=iterations)
+    seconds = time.perf_counter() - started
+    with torch.no_grad():
+        render = render_maps(best.material(size=photo.shape[-1], seed=SEED))[:1].clamp(0, 1).cpu()
+    return {"graph": best.graph, "top3": [f.graph for f in fits], "seconds": round(seconds, 2),
+            "loss": best.result.loss_final, "patch_distance": patch_distance(photo, render),
+            "colour_distance": colour_distance(photo, render)}, render
+
+
+def summarise(rows: list[dict], seconds: float) -> dict:
+    """Photos, share of family matches (a failed photo is a miss), medians over the photos that
+    were fitted, total seconds of the run."""
+    done = [r for r in rows if not r["error"]]
+
+    def median(key):
+        return round(statistics.median(r[key] for r in done), 3) if done else None
+
+    return {"photos": len(rows), "failed": len(rows) - len(done),
+            "family_match_share": round(sum(r["family_match"] for r in rows) / len(rows), 3),
+            "median_patch_distance": median("patch_distance"), "median_colour_distance": median("colour_distance"),
+            "median_seconds": median("seconds"), "total_seconds": round(seconds, 1)}
+
+
+def summary_row(summary: dict) -> dict:
+    """The summary in the per-photo columns, for the printed table's last row ("all")."""
+    return {"photo": "all", "category": f"{summary['photos']} photos", "graph": "", "top3": "",
+            "family_match": f"{summary['family_match_share']:.0%}", "seconds": summary["median_seconds"],
+            "loss": "", "patch_distance": summary["median_patch_distance"],
+            "colour_distance": summary["median_colour_distance"],
+            "error": f"{summary['failed']} failed; total {summary['total_seconds']:.0f} s"}
+
+
+def markdown(rows: list[dict], summary: dict, config: dict) -> str:
+    return "\n\n".join([
+        "# bench photos",
+        f"{config['photos_dir']}: quality {config['quality']}"
+        + (f", {config['iterations']} iterations" if config["iterations"] else "")
+        + f", top {K} fitted, seed {SEED}, photo size {config['photo_size']} px, device {config['device']}, "
+        f"torch threads {config['threads']}. family match: the kept graph is in the category's family "
+        "(photo_categories.json); distances: photo against the kept material's flash render (lower is closer); "
+        "seconds: selection and fitting; medians over the photos that did not fail",
+        table([summary], list(summary)), "## Per photo", table(rows, COLUMNS)]) + "\n"
+
+
+def _tile(image: torch.Tensor | None):
+    """A TILE-px PIL tile of a (1, 3, S, S) image in [0, 1]; dark grey when there is none."""
+    import numpy as np
+    from PIL import Image
+
+    from ..diffmat.optim import resize_square
+
+    if image is None:
+        return Image.new("RGB", (TILE, TILE), (48, 48, 48))
+    small = resize_square(image.float().cpu(), TILE)[0].clamp(0, 1)
+    return Image.fromarray(np.rint(small.permute(1, 2, 0).numpy() * 255).astype(np.uint8))
+
+
+def _label(row: dict):
+    """The third tile of a sheet row: the kept graph (or the error), category and match."""
+    import textwrap
+
+    from PIL import Image, ImageDraw
+
+    tile = Image.new("RGB", (TILE, TILE), (24, 24, 24))
+    draw = ImageDraw.Draw(tile)
+    if row["error"]:
+        lines = ["FAILED", *textwrap.wrap(row["error"], 30)[:8]]
+    else:
+        lines = [row["graph"], "", f"category: {row['category']}",
+                 "in its family" if row["family_match"] else "not in its family", "",
+                 f"patch {row['patch_distance']:.1f}  colour {row['colour_distance']:.1f}",
+                 f"{row['seconds']:.0f} s", "", *textwrap.wrap(row["photo"], 30)]
+    colour = (120, 220, 120) if row["family_match"] else (240, 140, 120)
+    for i, text in enumerate(lines):
+        draw.text((8, 8 + 14 * i), text, fill=colour if i == 0 else (230, 230, 230))
+    return tile
+
+
+def sheet_png(entries: list[tuple]) -> bytes:
+    """PNG bytes of the sheet: per (photo, render, row), photo | render | label, TILE px each."""
+    from PIL import Image
+
+    sheet = Image.new("RGB", (3 * TILE, len(entries) * TILE), (0, 0, 0))
+    for i, (photo, render, row) in enumerate(entries):
+        for j, tile in enumerate((_tile(photo), _tile(render), _label(row))):
+            sheet.paste(tile, (j * TILE, i * TILE))
+    buffer = io.BytesIO()
+    sheet.save(buffer, "PNG")
+    return buffer.getvalue()
+
+
+def run(device: str = "cpu", photos=None, quick: bool = False, quality: str | None = None, out: Path | None = None,
+        limit: int | None = None, iterations: int | None = None, **_ignored) -> list[dict]:
+    """Match every photo of ``photos`` (module docstring): the per-photo rows then the "all" row;
+    [] with one line on stderr when the folder holds no photo. ``limit``: the first photos only."""
+    from ..photo import load_photo
+    from ..pipeline import PHOTO_SIZE, QUALITIES, resolve_device
+    from ..selection.descriptor import shared_vgg
+
+    quality = quality or ("draft" if quick else "balanced")
+    if quality not in QUALITIES:
+        raise ValueError(f"quality {quality!r}: expected one of {', '.join(QUALITIES)}")
+    folder = Path(photos) if photos is not None else default_photos()
+    paths = find_photos(folder)[:limit]
+    if not paths:
+        print(f"bench photos: no photos (*.jpg, *.jpeg, *.png) in {folder}: nothing to measure "
+              "(--photos DIR names another folder)", file=sys.stderr)
+        return []
+    families = load_families()
+    listed = listed_categories(folder)
+    torch_device = resolve_device(device)
+    shared_vgg(torch_device)  # loaded once, before the clock of the first photo starts
+    rows, entries = [], []
+    started = time.perf_counter()
+    for index, path in enumerate(paths):
+        category = listed.get(path.name) or name_category(path.stem, families)
+        row = {c: None for c in COLUMNS} | {"photo": path.name, "category": category, "graph": "", "top3": [],
+                                           "family_match": False, "error": ""}
+        photo = render = None
+        try:
+            photo = load_photo(path, PHOTO_SIZE)
+            fields, render = evaluate(photo, quality, iterations, torch_device)
+            row |= fields | {"family_match": fields["graph"] in families.get(category, ())}
+        except Exception as exc:  # one photo's failure is its row's, not the run's
+            row["error"] = f"{type(exc).__name__}: {exc}"
+        rows.append(row)
+        entries.append((photo, render, row))
+        done = (f"kept {row['graph']} ({'match' if row['family_match'] else 'miss'}), top3 {', '.join(row['top3'])}, "
+                f"patch {row['patch_distance']:.1f}, colour {row['colour_distance']:.1f}, {row['seconds']:.0f}s"
+                if not row["error"] else f"FAILED: {row['error']}")
+        print(f"[{time.perf_counter() - started:6.0f}s] {index + 1}/{len(paths)} {path.name} ({category}): {done}",
+              file=sys.stderr, flush=True)
+    summary = summarise(rows, time.perf_counter() - started)
+    if out is not None:
+        from ..safe_files import write_atomic
+
+        out = Path(out)
+        out.mkdir(parents=True, exist_ok=True)
+        config = {"photos_dir": str(folder), "quality": quality, "iterations": iterations, "k": K, "seed": SEED,
+                  "photo_size": PHOTO_SIZE, "device": str(torch_device), "threads": torch.get_num_threads(),
+                  "categories": {c: families.get(c, []) for c in sorted({r["category"] for r in rows})}}
+        write_atomic(out / "results.json", json.dumps({"config": config, "rows": rows, "summary": summary},
+                                                      indent=1).encode("utf-8"), overwrite=True)
+        write_atomic(out / "results.md", markdown(rows, summary, config).encode("utf-8"), overwrite=True)
+        write_atomic(out / "sheet.png", sheet_png(entries), overwrite=True)
+    return [{**r, "top3": ", ".join(r["top3"])} for r in rows] + [summary_row(summary)]

@@ -1,0 +1,190 @@
+"""``blender-match bench recovery``: does each quality preset move a material toward the truth?
+
+The paper's own test. A target is a library graph at a sampled variant (``sample_params(graph, k)``,
+k >= ``TARGET_K0``: beyond every bank and training index) rendered at ``size`` px with noise seed
+``TRUTH_SEED``, which no fit uses. Each preset (draft, balanced, best) fits it as ``blender-match
+match --graph NAME`` does (``pipeline.fit_named_graph``: from the start the product chooses, with
+graph seed ``FIT_SEED``). The start and the fitted parameters are scored at ``size`` by three
+measures that no fit minimises:
+
+- ``patch``: ``image_distances.patch_distance`` between the target photo and the flash render with
+  the fit's seed (what the user sees);
+- ``maps``: the mean over the maps (base colour, normal, roughness, metallic, height) of each map's
+  RMSE against the truth's maps, the parameters rendered with the truth's seed (pixel-aligned: a
+  fit's seed is arbitrary, and between two seeds the RMSE of uncorrelated noise is smallest for a
+  flat map, which would reward a fit that erased the texture);
+- ``novel``: RMSE of the sRGB render under a light moved away from the camera (``NOVEL_LIGHT``)
+  against the truth's, rendered the same way.
+
+Each is divided by the same measure for the truth's parameters re-rendered with the fit's seed,
+so 1.0 is "as good as the truth itself": for ``maps`` and ``novel``, an error as large as the one
+the noise seed alone makes. Per preset the table gives the median ratio of each measure, the share
+of targets that end closer than they started by each, and the median seconds (start choice and
+fit; the 2K maps that ``match`` writes afterwards are not part of it). ``--quick``: one target for
+each of ``QUICK_GRAPHS`` (the full run: every library graph; ``--graphs`` picks others), every
+preset (``--quality draft,balanced``: those).
+"""
+from __future__ import annotations
+
+import json
+import statistics
+import sys
+import time
+from pathlib import Path
+
+import torch
+
+from .accuracy_metrics import NOVEL_LIGHT, image_rmse, make_truth, map_rmse
+from .image_distances import patch_distance
+from .markdown import table
+
+TARGET_K0 = 300_000
+TRUTH_SEED = 7771
+FIT_SEED = 0
+MEASURES = ("patch", "maps", "novel")
+PRESETS = ("draft", "balanced", "best")
+QUICK_GRAPHS = ("asphalt", "bricks", "leather", "plaster", "raw_wood", "woven_fabric")
+SIZE = 512
+
+
+def measures(graph, theta: torch.Tensor, photo: torch.Tensor, truth, size: int, map_seed: int) -> dict[str, float]:
+    """The three yardsticks of ``graph`` at ``theta`` (P,): the patch distance of its render with
+    ``FIT_SEED``, the map and novel-light errors of its maps with ``map_seed``."""
+    from ..diffmat.render import render_maps
+
+    theta = theta.reshape(1, -1).to(photo.device)
+    with torch.no_grad():
+        render = render_maps(graph(size=size, seed=FIT_SEED, theta=theta))[:1]
+        maps = graph(size=size, seed=map_seed, theta=theta)
+        novel = render_maps(maps, light_offset=NOVEL_LIGHT)[:1]
+    rmse = map_rmse(maps, truth.maps)
+    return {"patch": patch_distance(photo, render), "maps": statistics.fmean(rmse.values()),
+            "novel": image_rmse(novel, truth.novel), **{f"rmse_{name}": value for name, value in rmse.items()}}
+
+
+def recover(name: str, k: int, size: int, presets, device, iterations: int | None = None) -> list[dict]:
+    """One target (graph ``name``, variant ``k``) fitted by each preset (rescaled to ``iterations``
+    when given): one row per preset."""
+    from ..diffmat.optim import quality_schedule
+    from ..library import apply_params, load_library_graph, sample_params
+    from ..pipeline import fit_named_graph
+
+    graph = load_library_graph(name).to(device)
+    apply_params(graph, sample_params(name, k))
+    truth_theta = graph.get_vector()
+    photo, truth = make_truth(graph, truth_theta, size, TRUTH_SEED)
+    reference = measures(graph, truth_theta, photo, truth, size, FIT_SEED)  # what the seed alone costs
+    rows = []
+    for preset in presets:
+        fresh = load_library_graph(name)
+        started = time.perf_counter()
+        result, start, theta0 = fit_named_graph(fresh, name, photo, quality_schedule(preset, iterations), FIT_SEED,
+                                                 device)
+        seconds = time.perf_counter() - started
+        before = measures(fresh, theta0, photo, truth, size, TRUTH_SEED)
+        after = measures(fresh, result.theta, photo, truth, size, TRUTH_SEED)
+        row = {"target": f"{name}/{k}", "graph": name, "preset": preset, "start": start, "seconds": round(seconds, 2),
+               "iterations": result.iterations, "loss_initial": result.loss_initial, "loss_final": result.loss_final}
+        row |= {f"{key}_start": value for key, value in before.items() if key.startswith("rmse_")}
+        row |= {f"{key}_final": value for key, value in after.items() if key.startswith("rmse_")}
+        for m in MEASURES:
+            row[f"{m}_truth"] = reference[m]
+            row[f"{m}_start"] = before[m]
+            row[f"{m}_final"] = after[m]
+            row[f"{m}_ratio"] = after[m] / max(reference[m], 1e-9)
+            row[f"{m}_start_ratio"] = before[m] / max(reference[m], 1e-9)
+            row[f"{m}_closer"] = after[m] < before[m]
+        rows.append(row)
+    return rows
+
+
+def summarise(rows: list[dict], presets) -> list[dict]:
+    """One row per preset: median ratios, shares of targets ending closer than they started, seconds."""
+    out = []
+    for preset in presets:
+        mine = [r for r in rows if r["preset"] == preset]
+        if not mine:
+            continue
+        row = {"preset": preset, "targets": len(mine)}
+        for m in MEASURES:
+            row[f"{m}_ratio"] = round(statistics.median(r[f"{m}_ratio"] for r in mine), 3)
+        for m in MEASURES:
+            row[f"{m}_closer"] = f"{sum(r[f'{m}_closer'] for r in mine) / len(mine):.0%}"
+        row["start_patch_ratio"] = round(statistics.median(r["patch_start_ratio"] for r in mine), 3)
+        row["seconds"] = round(statistics.median(r["seconds"] for r in mine), 1)
+        out.append(row)
+    return out
+
+
+def markdown(summary: list[dict], rows: list[dict], config: dict) -> str:
+    per_target = ["target", "preset", "start", "seconds", "patch_start_ratio", "patch_ratio", "maps_ratio",
+                  "novel_ratio"]
+    return "\n\n".join([
+        "# bench recovery", f"size {config['size']} px, truth seed {TRUTH_SEED}, fit seed {FIT_SEED}, "
+        f"device {config['device']}, torch threads {config['threads']}; ratios: the measure over the truth's "
+        "own (1.0 = as good as the truth re-rendered with the fit's seed); closer: share of targets that "
+        "end closer to the truth than their start", table(summary, list(summary[0])) if summary else "(no rows)",
+        "## Per target", table(rows, per_target) if rows else "(no rows)"]) + "\n"
+
+
+def chart(path: Path, rows: list[dict], presets) -> Path:
+    """Per measure, each target's ratio against the preset's seconds (log scale), start marked."""
+    from .charts import _pyplot
+
+    plt = _pyplot()
+    fig, axes = plt.subplots(1, len(MEASURES), figsize=(5 * len(MEASURES), 4.2))
+    colours = plt.get_cmap("tab10")
+    for ax, m in zip(axes, MEASURES):
+        for i, preset in enumerate(presets):
+            mine = [r for r in rows if r["preset"] == preset]
+            ax.scatter([r["seconds"] for r in mine], [r[f"{m}_ratio"] for r in mine], color=colours(i), label=preset)
+            ax.scatter([0.5] * len(mine), [r[f"{m}_start_ratio"] for r in mine], color=colours(i), marker="x", s=14)
+        ax.axhline(1.0, color="grey", lw=0.8, ls="--")
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel("seconds (x at 0.5 s: the start)")
+        ax.set_ylabel(f"{m}: distance / truth's")
+    axes[0].legend()
+    fig.suptitle("bench recovery: distance to the truth against time")
+    fig.tight_layout()
+    fig.savefig(path, dpi=100)
+    plt.close(fig)
+    return path
+
+
+def run(device: str = "cpu", graphs=None, quick: bool = False, quality: str | None = None, out: Path | None = None,
+        size: int | None = None, targets: int = 1, iterations: int | None = None, **_ignored) -> list[dict]:
+    from ..library import library_names
+    from ..pipeline import resolve_device
+
+    torch_device = resolve_device(device)
+    names = list(graphs or (QUICK_GRAPHS if quick else library_names()))
+    presets = tuple(quality.split(",")) if quality else PRESETS  # "draft,balanced": those two
+    size = size or SIZE
+    rows = []
+    started = time.perf_counter()
+    for name in names:
+        for t in range(targets):
+            rows.extend(recover(name, TARGET_K0 + t, size, presets, torch_device, iterations))
+            last = rows[-len(presets):]
+            print(f"[{time.perf_counter() - started:6.0f}s] {name}: " + ", ".join(
+                f"{r['preset']} patch {r['patch_start_ratio']:.2f}->{r['patch_ratio']:.2f} "
+                f"maps {r['maps_start_ratio']:.2f}->{r['maps_ratio']:.2f} ({r['seconds']:.0f}s)" for r in last),
+                file=sys.stderr, flush=True)
+            if out is not None:  # after every target, so that a cut-short run leaves its results
+                write_results(Path(out), rows, presets, {"size": size, "iterations": iterations,
+                              "device": str(torch_device), "threads": torch.get_num_threads(), "graphs": names,
+                              "presets": list(presets), "seconds": round(time.perf_counter() - started, 1)})
+    return summarise(rows, presets)
+
+
+def write_results(out: Path, rows: list[dict], presets, config: dict):
+    """results.json, results.md and recovery.png in ``out``."""
+    from ..safe_files import write_atomic
+
+    out.mkdir(parents=True, exist_ok=True)
+    summary = summarise(rows, presets)
+    write_atomic(out / "results.json", json.dumps({"config": config, "summary": summary, "rows": rows},
+                                                  indent=1).encode("utf-8"), overwrite=True)
+    write_atomic(out / "results.md", markdown(summary, rows, config).encode("utf-8"), overwrite=True)
+    chart(out / "recovery.png", rows, presets)
