@@ -54,8 +54,9 @@ def measures(graph, theta: torch.Tensor, photo: torch.Tensor, truth, size: int, 
 
     theta = theta.reshape(1, -1).to(photo.device)
     with torch.no_grad():
-        render = render_maps(graph(size=size, seed=FIT_SEED, theta=theta))[:1]
-        maps = graph(size=size, seed=map_seed, theta=theta)
+        shown = graph(size=size, seed=FIT_SEED, theta=theta)
+        render = render_maps(shown)[:1]
+        maps = shown if map_seed == FIT_SEED else graph(size=size, seed=map_seed, theta=theta)
         novel = render_maps(maps, light_offset=NOVEL_LIGHT)[:1]
     rmse = map_rmse(maps, truth.maps)
     return {"patch": patch_distance(photo, render), "maps": statistics.fmean(rmse.values()),
