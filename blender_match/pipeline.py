@@ -245,7 +245,8 @@ def match_photo(photo, out_dir, options: MatchOptions, progress=None, cancel=Non
 def fit_named_graph(graph, name: str, target, schedule, seed: int, device, progress=None, cancel=None):
     """Fit ``graph`` (the graph called ``name``) to the photo tensor ``target`` from the start the
     product chooses (default, bank or predicted parameters: ``choose_start``): (FitResult, the
-    start's name, the start's parameter vector). The graph is moved to ``device`` and its parameters are left unchanged."""
+    start's name, the start's parameter vector). The graph is moved to ``device``; its parameters
+    are left unchanged."""
     from .diffmat.descriptor import TextureDescriptor
     from .diffmat.optim import TargetLoss, fit
     from .selection.descriptor import shared_vgg

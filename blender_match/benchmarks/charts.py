@@ -4,7 +4,8 @@
   method through its budgets, the Pareto front over every point drawn as a dashed step line with
   its points circled;
 - ``convergence_chart``: loss against time of whole fits (``FitResult.history``), with markers
-  for the losses the benchmark measured at each budget.
+  for the losses the benchmark measured at each budget;
+- ``recovery_chart`` (``bench recovery``): each target's distance to the truth against seconds.
 """
 from __future__ import annotations
 
@@ -97,3 +98,27 @@ def convergence_chart(path: Path, series: dict[str, list[tuple[float, float]]],
     fig.savefig(path, dpi=110)
     plt.close(fig)
     return Path(path)
+
+
+def recovery_chart(path: Path, rows: list[dict], presets, measures) -> Path:
+    """``bench recovery``: per measure, each target's ratio to the truth's against the preset's
+    seconds (log scales), the start marked at 0.5 s."""
+    plt = _pyplot()
+    fig, axes = plt.subplots(1, len(measures), figsize=(5 * len(measures), 4.2))
+    colours = plt.get_cmap("tab10")
+    for ax, m in zip(axes, measures):
+        for i, preset in enumerate(presets):
+            mine = [r for r in rows if r["preset"] == preset]
+            ax.scatter([r["seconds"] for r in mine], [r[f"{m}_ratio"] for r in mine], color=colours(i), label=preset)
+            ax.scatter([0.5] * len(mine), [r[f"{m}_start_ratio"] for r in mine], color=colours(i), marker="x", s=14)
+        ax.axhline(1.0, color="grey", lw=0.8, ls="--")
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel("seconds (x at 0.5 s: the start)")
+        ax.set_ylabel(f"{m}: distance / truth's")
+    axes[0].legend()
+    fig.suptitle("bench recovery: distance to the truth against time")
+    fig.tight_layout()
+    fig.savefig(path, dpi=100)
+    plt.close(fig)
+    return path

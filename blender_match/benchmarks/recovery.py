@@ -35,6 +35,7 @@ from pathlib import Path
 import torch
 
 from .accuracy_metrics import NOVEL_LIGHT, image_rmse, make_truth, map_rmse
+from .charts import recovery_chart
 from .image_distances import patch_distance
 from .markdown import table
 
@@ -128,31 +129,6 @@ def markdown(summary: list[dict], rows: list[dict], config: dict) -> str:
         "## Per target", table(rows, per_target) if rows else "(no rows)"]) + "\n"
 
 
-def chart(path: Path, rows: list[dict], presets) -> Path:
-    """Per measure, each target's ratio against the preset's seconds (log scale), start marked."""
-    from .charts import _pyplot
-
-    plt = _pyplot()
-    fig, axes = plt.subplots(1, len(MEASURES), figsize=(5 * len(MEASURES), 4.2))
-    colours = plt.get_cmap("tab10")
-    for ax, m in zip(axes, MEASURES):
-        for i, preset in enumerate(presets):
-            mine = [r for r in rows if r["preset"] == preset]
-            ax.scatter([r["seconds"] for r in mine], [r[f"{m}_ratio"] for r in mine], color=colours(i), label=preset)
-            ax.scatter([0.5] * len(mine), [r[f"{m}_start_ratio"] for r in mine], color=colours(i), marker="x", s=14)
-        ax.axhline(1.0, color="grey", lw=0.8, ls="--")
-        ax.set_xscale("log")
-        ax.set_yscale("log")
-        ax.set_xlabel("seconds (x at 0.5 s: the start)")
-        ax.set_ylabel(f"{m}: distance / truth's")
-    axes[0].legend()
-    fig.suptitle("bench recovery: distance to the truth against time")
-    fig.tight_layout()
-    fig.savefig(path, dpi=100)
-    plt.close(fig)
-    return path
-
-
 def run(device: str = "cpu", graphs=None, quick: bool = False, quality: str | None = None, out: Path | None = None,
         size: int | None = None, targets: int = 1, iterations: int | None = None, **_ignored) -> list[dict]:
     from ..library import library_names
@@ -188,4 +164,4 @@ def write_results(out: Path, rows: list[dict], presets, config: dict):
     write_atomic(out / "results.json", json.dumps({"config": config, "summary": summary, "rows": rows},
                                                   indent=1).encode("utf-8"), overwrite=True)
     write_atomic(out / "results.md", markdown(summary, rows, config).encode("utf-8"), overwrite=True)
-    chart(out / "recovery.png", rows, presets)
+    recovery_chart(out / "recovery.png", rows, presets, MEASURES)

@@ -11,11 +11,10 @@ sooner by
   and 128 (and 512 for ``best``). Every stage still *renders* at the photo's size (512 px): a
   graph rendered at 128 px is not the photo shrunk to 128, because the flash shading of fine
   relief does not average linearly (a height map's fine detail tilts the normals only at the
-  resolution that holds it, so most library graphs render 5-20% brighter at 128 than at 512
-  shrunk to 128). A fit whose early stages rendered at 128 px darkened the material to compensate
-  and lost its fine grain, and came out too dark at the size the maps are written. Describing
-  costs more than rendering (VGG19 at 128 px is about 0.4 s of a 0.85 s step at 512), so this
-  keeps most of the speed;
+  resolution that holds it, so most library graphs render brighter at 128 than at 512 shrunk to
+  128). A fit whose early stages rendered at 128 px darkened the material to compensate and lost
+  its fine grain, and came out too dark at the size the maps are written. VGG19 costs more than
+  the graph, so describing small keeps most of the speed (figures: docs/matching.md);
 - larger learning rates with a cosine decay inside each stage;
 - early stopping on a plateau (no relative improvement of the best loss for ``patience``
   iterations ends the stage);
