@@ -9,7 +9,9 @@ from __future__ import annotations
 
 import importlib
 
-__version__ = "0.1.0"
+from .version import __version__
+
+__all__ = ["__version__", "register", "unregister"]
 
 # Modules whose ``classes`` tuple holds the bpy classes to register, in order. A module may also
 # have ``register()``/``unregister()`` for what is not a class (properties added to Blender's types),
@@ -29,7 +31,7 @@ def _classes():
 
 def register():
     """Register the add-on's classes with Blender."""
-    import bpy
+    import bpy  # here, not at the top: the command line imports this package without Blender
 
     for module in _modules():
         for cls in getattr(module, "classes", ()):
@@ -41,9 +43,9 @@ def register():
 
 def unregister():
     """Stop running jobs, then unregister in reverse order; leaves nothing behind."""
-    import bpy
+    import bpy  # here, not at the top: the command line imports this package without Blender
 
-    from .blender import match_job
+    from .blender import match_job  # imports bpy too
 
     match_job.shutdown()
     for module in reversed(list(_modules())):

@@ -9,6 +9,7 @@ from __future__ import annotations
 from typing import Callable
 
 from .diffmat import MaterialGraph
+from .errors import OptionError
 from .library.authoring import ADD, ADD_SUB, MAX, MULTIPLY, OVERLAY, SCREEN, SUBTRACT, gradient_keys
 
 
@@ -37,9 +38,11 @@ def worn_stone_tiles() -> MaterialGraph:
     g.add("edges", "edge_detect", {"input": "tiles_warp"})
     g.add("cracks", "histogram_scan", {"input_1": "cells"}, position=0.2, contrast=0.8)
     g.add("cracks_inv", "invert_grayscale", {"source": "cracks"})
-    g.add("surface", "blend", {"source": "fractal", "destination": "tiles_soft"}, blendingmode=MULTIPLY, opacitymult=0.3)
+    g.add("surface", "blend", {"source": "fractal", "destination": "tiles_soft"},
+          blendingmode=MULTIPLY, opacitymult=0.3)
     g.add("pitted", "blend", {"source": "spots", "destination": "surface"}, blendingmode=SUBTRACT, opacitymult=0.1)
-    g.add("cracked", "blend", {"source": "cracks_inv", "destination": "pitted"}, blendingmode=MULTIPLY, opacitymult=0.5)
+    g.add("cracked", "blend", {"source": "cracks_inv", "destination": "pitted"},
+          blendingmode=MULTIPLY, opacitymult=0.5)
     g.add("height_levels", "levels", {"input1": "cracked"}, levelinlow=(0.05, 0.05, 0.05, 0.0))
     g.add("height", "histogram_range", {"input": "height_levels"}, range=0.8, position=0.5)
     # normal
@@ -63,17 +66,21 @@ def worn_stone_tiles() -> MaterialGraph:
     g.add("worn_edges", "blend", {"source": "edge_color", "destination": "dirty", "opacity": "edge_mask"},
           blendingmode=SCREEN, opacitymult=0.5)
     g.add("ao_rgb", "gradient", {"input1": "ao"}, **gradient_keys([(0.0, (0.0, 0.0, 0.0)), (1.0, (1.0, 1.0, 1.0))]))
-    g.add("occluded", "blend", {"source": "ao_rgb", "destination": "worn_edges"}, blendingmode=MULTIPLY, opacitymult=0.7)
+    g.add("occluded", "blend", {"source": "ao_rgb", "destination": "worn_edges"},
+          blendingmode=MULTIPLY, opacitymult=0.7)
     g.add("graded", "hsl", {"input1": "occluded"}, saturation=0.45, luminosity=0.52)
     g.add("basecolor", "sharpen", {"input1": "graded"}, intensity=0.5)
     # roughness
     g.add("rough_base", "levels", {"input1": "moisture"}, leveloutlow=(0.55, 0.55, 0.55, 0.0),
           levelouthigh=(0.8, 0.8, 0.8, 1.0))
-    g.add("rough_grunge", "blend", {"source": "grunge", "destination": "rough_base"}, blendingmode=ADD_SUB, opacitymult=0.3)
-    g.add("rough_dirt", "blend", {"source": "dirt_mask", "destination": "rough_grunge"}, blendingmode=MAX, opacitymult=0.5)
+    g.add("rough_grunge", "blend", {"source": "grunge", "destination": "rough_base"},
+          blendingmode=ADD_SUB, opacitymult=0.3)
+    g.add("rough_dirt", "blend", {"source": "dirt_mask", "destination": "rough_grunge"},
+          blendingmode=MAX, opacitymult=0.5)
     g.add("rough_cracks", "blend", {"source": "cracks", "destination": "rough_dirt"}, blendingmode=ADD, opacitymult=0.2)
     g.add("color_lum", "grayscaleconversion", {"input1": "graded"})
-    g.add("rough_color", "blend", {"source": "color_lum", "destination": "rough_cracks"}, blendingmode=SUBTRACT, opacitymult=0.1)
+    g.add("rough_color", "blend", {"source": "color_lum", "destination": "rough_cracks"},
+          blendingmode=SUBTRACT, opacitymult=0.1)
     g.add("roughness", "levels", {"input1": "rough_color"}, leveloutlow=(0.35, 0.35, 0.35, 0.0),
           levelouthigh=(0.9, 0.9, 0.9, 1.0))
     # metallic: a few mica flecks
@@ -94,5 +101,5 @@ BUNDLED: dict[str, tuple[Callable[[], MaterialGraph], str]] = {
 def build(name: str) -> MaterialGraph:
     """A fresh MaterialGraph of bundled graph ``name``."""
     if name not in BUNDLED:
-        raise ValueError(f"{name}: no such bundled graph ({', '.join(sorted(BUNDLED))})")
+        raise OptionError(f"{name}: no such bundled graph ({', '.join(sorted(BUNDLED))})")
     return BUNDLED[name][0]()

@@ -17,6 +17,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .errors import BlenderMatchError
 from .safe_files import write_atomic
 
 MAGIC = b"\x76\x2f\x31\x01"
@@ -33,7 +34,7 @@ _MAX_ZIP_RATIO = 1032  # deflate's largest ratio: bounds the pixels a file can h
 _WRITE_LAYOUTS = {1: "Y", 3: "RGB", 4: "RGBA"}
 
 
-class ExrError(ValueError):
+class ExrError(BlenderMatchError):
     """An OpenEXR file that cannot be read or an array that cannot be written (names the file
     and the problem)."""
 

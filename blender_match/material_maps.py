@@ -1,4 +1,5 @@
-"""Material maps as files: which file each map goes to, at which bit depth, and flat-map detection.
+"""Material maps as files (the file, channels and bit depth of each: ``vocabulary.OUTPUTS``) and
+flat-map detection.
 
 Maps are (1, C, H, W) tensors from a MaterialGraph: base colour RGBA/gray (sRGB-encoded, as
 Substance outputs it), normal RGBA in OpenGL convention, roughness, metallic, height, ambient
@@ -12,16 +13,9 @@ from pathlib import Path
 import torch
 
 from .image_files import write_png
+from .safe_files import FileWriteError
+from .vocabulary import OUTPUTS
 
-# usage -> (file name, channels written, bits)
-MAP_FILES = {
-    "basecolor": ("basecolor.png", 3, 8),
-    "normal": ("normal.png", 3, 16),
-    "roughness": ("roughness.png", 1, 8),
-    "metallic": ("metallic.png", 1, 8),
-    "height": ("height.png", 1, 16),
-    "ambientocclusion": ("ambientocclusion.png", 1, 8),
-}
 FLAT_TOLERANCE = 1.0 / 512
 
 
@@ -46,15 +40,15 @@ def write_maps(maps: dict[str, torch.Tensor], out_dir: Path, overwrite: bool = F
     Checks every target first, so a refused overwrite writes nothing.
     """
     out_dir = Path(out_dir)
-    targets = {u: out_dir / MAP_FILES[u][0] for u in maps if u in MAP_FILES}
+    targets = {u: out_dir / OUTPUTS[u].file for u in maps if u in OUTPUTS}
     if not overwrite:
         existing = [str(p) for p in targets.values() if p.exists()]
         if existing:
-            raise FileExistsError(f"{existing[0]}: already exists (use --overwrite to replace it)")
+            raise FileWriteError(f"{existing[0]}: already exists (use --overwrite to replace it)")
     written = {}
     for usage, path in targets.items():
-        _, channels, bits = MAP_FILES[usage]
-        img = to_channels(maps[usage].detach()[:1].float().cpu(), channels)
-        write_png(path, img, bits=bits, overwrite=True)
+        output = OUTPUTS[usage]
+        img = to_channels(maps[usage].detach()[:1].float().cpu(), output.file_channels)
+        write_png(path, img, bits=output.bits, overwrite=True)
         written[usage] = {"file": path.name, "flat": flat_value(img)}
     return written

@@ -15,15 +15,17 @@ from __future__ import annotations
 
 import sys
 import warnings
+from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
 
 import numpy as np
 import torch
 import torch.nn.functional as F
-from PIL import ExifTags, Image, UnidentifiedImageError
+from PIL import ExifTags, Image, ImageFile, UnidentifiedImageError
 
 from .diffmat.render import linear_to_srgb
+from .errors import BlenderMatchError
 from .exr_files import MAGIC as EXR_MAGIC
 from .exr_files import ExrError, read_exr, read_exr_header
 
@@ -48,7 +50,7 @@ _DEEP_RAWMODES = ("RGB;16", "RGBA;16", "RGBX;16")
 _OTHER_BYTE = {"B": "L", "L": "B", "N": "L" if sys.byteorder == "big" else "B"}
 
 
-class PhotoError(ValueError):
+class PhotoError(BlenderMatchError):
     """A photo that cannot be used (names the file and the problem)."""
 
 
@@ -137,7 +139,7 @@ def _one_line(exc: Exception) -> str:
 
 
 @contextmanager
-def _opened(path: Path):
+def _opened(path: Path) -> Iterator[ImageFile.ImageFile]:
     """The image opened by Pillow (lazily: header only). Pillow's own decompression-bomb limit
     (a global the host application may have changed) warns above ~89 and fails above ~179
     megapixels; its warning is silenced, its failure becomes a PhotoError and MAX_PIXELS is
@@ -158,7 +160,7 @@ def _opened(path: Path):
             yield img
 
 
-def _decode(path: Path, img: Image.Image) -> np.ndarray:
+def _decode(path: Path, img: ImageFile.ImageFile) -> np.ndarray:
     """The pixels, upright, as an (H, W, C) array: uint8, uint16 or float32."""
     try:
         pixels = _deep_colour(path, img) if _is_deep_colour(img) else _pixels(img)
@@ -173,12 +175,12 @@ def _tile_args(tile) -> tuple:
     return tile[3] if isinstance(tile[3], tuple) else (tile[3],)
 
 
-def _is_deep_colour(img: Image.Image) -> bool:
+def _is_deep_colour(img: ImageFile.ImageFile) -> bool:
     rawmodes = [next(iter(_tile_args(t)), None) for t in img.tile]
     return bool(rawmodes) and all(isinstance(r, str) and r[:-1] in _DEEP_RAWMODES for r in rawmodes)
 
 
-def _deep_colour(path: Path, img: Image.Image) -> np.ndarray:
+def _deep_colour(path: Path, img: ImageFile.ImageFile) -> np.ndarray:
     """16-bit colour at full precision. Pillow unpacks each 16-bit sample to its high byte;
     decoding the same data again with the other byte order in the rawmode unpacks the low
     bytes, and the two make the samples exactly."""

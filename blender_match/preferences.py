@@ -10,6 +10,7 @@ import bpy
 from bpy.props import EnumProperty, StringProperty
 
 from .blender import addon, match_job
+from .vocabulary import DEFAULT_DEVICE
 
 
 def draw_preferences(prefs, layout, context):
@@ -54,7 +55,7 @@ class BLENDER_MATCH_AddonPreferences(bpy.types.AddonPreferences):
         name="Worker Python", subtype='FILE_PATH',
         description="A Python with torch and blender-match's requirements to run the matching "
                     "(empty: the backend set up below)")
-    default_device: EnumProperty(name="Default Device", items=addon.DEVICE_ITEMS, default="auto",
+    default_device: EnumProperty(name="Default Device", items=addon.DEVICE_ITEMS, default=DEFAULT_DEVICE,
                                  description="Where matches run unless the panel says otherwise")
     pip_arguments: StringProperty(
         name="pip Arguments",

@@ -6,8 +6,10 @@ import os
 import tempfile
 from pathlib import Path
 
+from .errors import BlenderMatchError
 
-class FileWriteError(ValueError):
+
+class FileWriteError(BlenderMatchError):
     """A file that may not or cannot be written (names the file and the problem)."""
 
 

@@ -14,6 +14,21 @@ ROOT = Path(__file__).resolve().parents[1]
 SHARED = Path(os.environ.get("BLENDER_MATCH_SHARED", ROOT.parent / "shared"))
 
 
+def pytest_collection_modifyitems(items):
+    """Marks each test by what it needs, so a run can choose (``-m "not slow"``, ``-m bpy``):
+    ``bpy`` for the add-on's tests (``tests/addon/``; elsewhere a test that runs Blender's module in
+    a subprocess says so itself), ``shared`` where it reads ``../shared`` (the ``shared_dir``
+    fixture or ``SHARED``). ``slow`` is set by hand on the tests themselves."""
+    addon = ROOT / "tests" / "addon"
+    for item in items:
+        module = getattr(item, "module", None)
+        names = vars(module) if module is not None else {}
+        if addon in Path(str(item.fspath)).parents:
+            item.add_marker(pytest.mark.bpy)
+        if "shared_dir" in getattr(item, "fixturenames", ()) or names.get("SHARED") is SHARED:
+            item.add_marker(pytest.mark.shared)
+
+
 @pytest.fixture(autouse=True)
 def _deterministic():
     torch.manual_seed(0)

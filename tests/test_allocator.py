@@ -5,8 +5,10 @@ import subprocess
 import sys
 
 import pytest
+import torch
 
 from blender_match.allocator import keep_freed_memory
+from blender_match.benchmarks.measure import measure
 
 
 @pytest.mark.skipif(not sys.platform.startswith("linux"), reason="glibc only")
@@ -27,10 +29,6 @@ def test_the_command_line_applies_it():
 
 @pytest.mark.skipif(not sys.platform.startswith("linux"), reason="glibc only")
 def test_a_measured_peak_is_not_hidden_by_memory_kept_from_an_earlier_run():
-    import torch
-
-    from blender_match.benchmarks.measure import measure
-
     keep_freed_memory()
     blocks = [torch.ones(4, 2**20 // 4) for _ in range(16)]  # 16 x 4 MiB, freed but kept
     del blocks

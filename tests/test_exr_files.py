@@ -225,6 +225,7 @@ def blender_folder(tmp_path_factory):
     return folder
 
 
+@pytest.mark.bpy
 def test_blender_reads_our_files(blender_folder):
     paths = sorted(blender_folder.glob("ours_*.exr"))
     assert len(paths) == 4
@@ -236,6 +237,7 @@ def test_blender_reads_our_files(blender_folder):
         np.testing.assert_array_equal(np.load(path.with_suffix(".npy")), expected, err_msg=path.name)
 
 
+@pytest.mark.bpy
 def test_we_read_blenders_files(blender_folder):
     source = np.load(blender_folder / "source.npy")
     for codec, depth, mode in [("ZIP", "16", "RGBA"), ("ZIPS", "32", "RGB"), ("NONE", "16", "RGB")]:

@@ -26,9 +26,15 @@ from pathlib import Path
 
 import torch
 
+from ..diffmat.descriptor import TextureDescriptor
+from ..diffmat.graph import MaterialGraph
+from ..diffmat.optim import TargetLoss
+from ..library import library_names, load_library_graph
 from .accuracy_methods import METHODS, Selection, Unavailable, fit_sizes, run_method
 from .accuracy_metrics import CLASSIFICATION_RULE, Scorer, classify, finite
+from .accuracy_report import markdown
 from .accuracy_targets import STRESS_KINDS, Target, graph_for_photo, real, real_photos, stress, synthetic
+from .charts import convergence_chart, speed_accuracy_chart
 
 FIT_SEED = 0
 
@@ -93,8 +99,6 @@ def machine() -> dict:
 
 
 def build_targets(config: Config, log=None) -> list[Target]:
-    from ..library import library_names
-
     names = list(config.graphs or library_names())
     targets = [synthetic(name, k, config.size) for name in names for k in config.samples]
     if config.real != ():
@@ -136,8 +140,6 @@ def _base_row(target: Target, method: str, seed: int) -> dict:
 def run_target(target: Target, config: Config, graphs, descriptor, selection, device: str, started: float,
                histories: dict | None = None) -> list[dict]:
     """Every method on one target: one row per (method, budget)."""
-    from ..diffmat.optim import TargetLoss
-
     seed = _seed_of(target)
     if target.photo is None:
         return [{**_base_row(target, m, seed), "status": "refused", "error": target.refusal} for m in config.methods]
@@ -195,12 +197,10 @@ class _Graphs:
 
     def __init__(self, device: str):
         self.device = device
-        self._graphs = {}
+        self._graphs: dict[str, tuple[MaterialGraph, torch.Tensor]] = {}
 
     def __call__(self, name: str):
         if name not in self._graphs:
-            from ..library import load_library_graph
-
             graph = load_library_graph(name).to(self.device)
             self._graphs[name] = (graph, graph.get_vector().cpu())
         return self._graphs[name]
@@ -252,8 +252,8 @@ def summarise(rows: list[dict], methods) -> list[dict]:
             continue
         if points:
             best = min(points, key=lambda p: (p["relative_loss"], p["seconds"] or 0))
-            row.update({k: best[k] for k in ("budget", "targets", "seconds", "descriptor_loss", "relative_loss", "param_error",
-                                             "map_rmse", "novel_rmse", "peak_mb")})
+            row.update({k: best[k] for k in ("budget", "targets", "seconds", "descriptor_loss", "relative_loss",
+                                             "param_error", "map_rmse", "novel_rmse", "peak_mb")})
         counts = {s: sum(r["status"] == s for r in ran) for s in ("success", "degraded", "failed", "refused")}
         row.update({"runs": len(ran), "failed": counts["failed"], "failure_rate": counts["failed"] / len(ran),
                     "degraded_rate": counts["degraded"] / len(ran), "refused": counts["refused"]})
@@ -294,9 +294,6 @@ def _std(values):
 
 def write_outputs(out: Path, result: dict) -> list[Path]:
     """results.json, results.md and the two charts in ``out``."""
-    from .accuracy_report import markdown
-    from .charts import convergence_chart, speed_accuracy_chart
-
     out.mkdir(parents=True, exist_ok=True)
     (out / "results.json").write_text(json.dumps(result, indent=1, default=_json_default) + "\n")
     (out / "results.md").write_text(markdown(result))
@@ -332,21 +329,22 @@ def run(device: str = "cpu", graphs=None, quick: bool = False, out: Path | None 
     config = config or (QUICK if quick else FULL)
     if graphs:
         config = replace(config, graphs=tuple(graphs))
-    from ..diffmat.descriptor import TextureDescriptor
 
     started = time.perf_counter()
     descriptor = TextureDescriptor().to(device)
     targets = build_targets(config, log=lambda m: _log(m, started))
     _log(f"{len(targets)} targets, methods {', '.join(config.methods)}", started)
     loaded, selection = _Graphs(device), Selection(device)
-    rows, histories = [], {}
+    rows: list[dict] = []
+    histories: dict[str, list[tuple[int, float]]] = {}
     for i, target in enumerate(targets):
         rows += run_target(target, config, loaded, descriptor, selection, device, started,
                            histories if i == 0 else None)
+    summary = summarise(rows, config.methods)
     result = {"config": {**asdict(config), "device": device}, "machine": machine(),
               "wall_seconds": round(time.perf_counter() - started, 1), "rule": CLASSIFICATION_RULE,
               "command": "blender-match bench accuracy" + (" --quick" if config.name == "quick" else ""),
-              "rows": rows, "curves": curves(rows, config.methods), "summary": summarise(rows, config.methods),
+              "rows": rows, "curves": curves(rows, config.methods), "summary": summary,
               "spread": spread(rows, config),
               "convergence": {"target": targets[0].name if targets else None, "histories": histories}}
     if out is not None:
@@ -355,4 +353,4 @@ def run(device: str = "cpu", graphs=None, quick: bool = False, out: Path | None 
     columns = ("method", "budget", "seconds", "descriptor_loss", "relative_loss", "param_error", "map_rmse",
                "novel_rmse", "peak_mb", "runs", "failure_rate")
     return [{k: (round(row[k], 4) if isinstance(row.get(k), float) else row.get(k)) for k in columns}
-            for row in result["summary"]]
+            for row in summary]

@@ -27,7 +27,8 @@ from dataclasses import dataclass, field, replace
 import torch
 
 from ..diffmat.optim import PAPER_SCHEDULE, QUALITY_SCHEDULES, Schedule, fit
-from ..selection import select
+from ..errors import OptionError
+from ..selection import NoSelectionModels, rank_graphs
 from .accuracy_metrics import cap_scales
 from .evolution import evolve
 from .measure import measure
@@ -73,13 +74,11 @@ class Selection:
 
     def _rank(self, photo: torch.Tensor, method: str, graph_name: str):
         try:
-            return select.rank_graphs(photo, method=method, graphs=[graph_name], device=self.device)
+            return rank_graphs(photo, method=method, graphs=[graph_name], device=self.device)
         except FileNotFoundError as exc:
             raise Unavailable(f"{method}: model files missing ({exc})") from None
-        except ValueError as exc:  # the module's "no models found" refusal
-            if "model" in str(exc):
-                raise Unavailable(f"{method}: no model for {graph_name}") from None
-            raise
+        except NoSelectionModels:
+            raise Unavailable(f"{method}: no model for {graph_name}") from None
 
     def start(self, photo: torch.Tensor, graph_name: str, method: str) -> tuple[torch.Tensor, float]:
         key = (id(photo), method, graph_name)
@@ -152,7 +151,7 @@ def _schedule_of(method: str) -> Schedule | None:
 
 def fit_sizes(methods, cap: int) -> set[tuple[int, tuple[int, ...]]]:
     """(size, scales) every fit of ``methods`` renders and describes at (for warming caches up)."""
-    out = set()
+    out: set[tuple[int, tuple[int, ...]]] = set()
     for method in methods:
         if method == "es":
             out.add((min(128, cap), (min(128, cap),)))
@@ -180,6 +179,8 @@ def run_method(method: str, graph, loss, budgets, *, cap: int, seed: int = 0, de
     if method in QUALITY_SCHEDULES:
         return _run_schedule(graph, loss, _schedule_of(method), budgets, cap, seed, default, 0.0, device, prefix)
     if method in ("predict", "predict+ours", "bank+ours"):
+        if photo is None:
+            raise Unavailable(f"{method}: predicting a start needs the target's photo")
         selection = selection or Selection(device)
         kind = "bank" if method.startswith("bank") else "predictor"
         with measure(device) as m:
@@ -191,7 +192,7 @@ def run_method(method: str, graph, loss, budgets, *, cap: int, seed: int = 0, de
         if method == "predict":
             return [Point(0, start, seconds, 0, m.peak_bytes, default)]
         return _run_schedule(graph, loss, _schedule_of(method), budgets, cap, seed, start, seconds, device, prefix)
-    raise ValueError(f"unknown method {method!r} (methods: {', '.join(METHODS)})")
+    raise OptionError(f"unknown method {method!r} (methods: {', '.join(METHODS)})")
 
 
 def _fit_point(graph, loss, schedule, budget, cap, seed, start, extra_seconds, device) -> Point:

@@ -25,9 +25,9 @@ import torch
 from ..diffmat.descriptor import style_loss
 from ..diffmat.optim import resize_square
 from ..diffmat.render import render_maps
+from ..vocabulary import AUTHORED_USAGES
 
 NOVEL_LIGHT = (0.5, 0.25)  # light offset from the camera, in sample widths (x right, y up)
-MAP_NAMES = ("basecolor", "normal", "roughness", "metallic", "height")
 LOSS_TOLERANCE = 0.01  # a final loss above the start's by more than this fraction: failed
 DEGRADED_GAIN = 0.10  # a loss reduced by less than this fraction: degraded
 
@@ -56,7 +56,7 @@ def make_truth(graph, theta: torch.Tensor, size: int, seed: int) -> tuple[torch.
         maps = graph(size=size, seed=seed, theta=theta.reshape(1, -1))
         photo = render_maps(maps)
         novel = render_maps(maps, light_offset=NOVEL_LIGHT)
-    kept = {k: v.detach() for k, v in maps.items() if k in MAP_NAMES}
+    kept = {k: v.detach() for k, v in maps.items() if k in AUTHORED_USAGES}
     return photo[:1].detach(), Truth(theta.detach().reshape(-1).cpu(), kept, novel[:1].detach(), seed)
 
 
@@ -67,7 +67,7 @@ def image_rmse(a: torch.Tensor, b: torch.Tensor) -> float:
 def map_rmse(maps: dict[str, torch.Tensor], truth: dict[str, torch.Tensor]) -> dict[str, float]:
     """RMSE of each map both dictionaries hold (a colour map's RGB, a gray map's one channel)."""
     out = {}
-    for name in MAP_NAMES:
+    for name in AUTHORED_USAGES:
         if name in maps and name in truth:
             a, b = maps[name][:1], truth[name][:1]
             channels = min(a.shape[1], b.shape[1], 3)
@@ -110,7 +110,8 @@ class Scorer:
         with torch.no_grad():
             maps = graph(size=self.size, seed=seed, theta=theta.reshape(1, -1).to(device))
             image = render_maps(maps)[:1]
-            out = {"descriptor_loss": float(style_loss(self.descriptor(image, self.scales), self.target)[0])}
+            descriptor_loss = float(style_loss(self.descriptor(image, self.scales), self.target)[0])
+            out: dict[str, float | dict[str, float]] = {"descriptor_loss": descriptor_loss}
             if self.truth is not None:
                 rmse = map_rmse(maps, self.truth.maps)
                 out["param_error"] = param_error(theta, self.truth.theta)

@@ -29,7 +29,8 @@ def _stress_matrix(result: dict) -> str:
     targets = list(dict.fromkeys(r["target"] for r in stress_rows))
     if not targets:
         return "_no stress targets in this run_"
-    lines = ["| target | graph | " + " | ".join(methods) + " |", "|" + "|".join("---" for _ in range(len(methods) + 2)) + "|"]
+    lines = ["| target | graph | " + " | ".join(methods) + " |",
+             "|" + "|".join("---" for _ in range(len(methods) + 2)) + "|"]
     for t in targets:
         cells = []
         graph = next(r["graph"] for r in stress_rows if r["target"] == t)

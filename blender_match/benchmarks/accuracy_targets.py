@@ -23,7 +23,11 @@ from pathlib import Path
 
 import numpy as np
 import torch
+from PIL import Image, ImageDraw
 
+from ..errors import OptionError
+from ..library import apply_params, load_library_graph, sample_params
+from ..photo import PhotoError, load_photo
 from .accuracy_metrics import Truth, make_truth
 
 TRUTH_SEED = 1234
@@ -72,8 +76,6 @@ def graph_for_photo(path: Path, known: list[str]) -> str | None:
 
 def synthetic(name: str, k: int, size: int, group: str = "main", seed: int = TRUTH_SEED) -> Target:
     """Library graph ``name`` at its k-th sampled variant, rendered at ``size`` px."""
-    from ..library import apply_params, load_library_graph, sample_params
-
     truth_graph = load_library_graph(name)
     apply_params(truth_graph, sample_params(name, k))
     photo, truth = make_truth(truth_graph, truth_graph.get_vector(), size, seed)
@@ -81,22 +83,16 @@ def synthetic(name: str, k: int, size: int, group: str = "main", seed: int = TRU
 
 
 def real(path: Path, graph: str, size: int, group: str = "main", kind: str = "real") -> Target:
-    from ..photo import load_photo
-
     return Target(f"real:{path.stem}", group, kind, graph, load_photo(path, size))
 
 
 def _save(folder: Path, name: str, pixels: np.ndarray) -> Path:
-    from PIL import Image
-
     path = folder / f"{name}.png"
     Image.fromarray(np.clip(np.rint(pixels * 255), 0, 255).astype(np.uint8)).save(path)
     return path
 
 
 def _checker_text(side: int = 512) -> np.ndarray:
-    from PIL import Image, ImageDraw
-
     cells = (np.indices((side, side)) // (side // 8)).sum(axis=0) % 2
     img = Image.fromarray((cells * 180 + 40).astype(np.uint8)).convert("RGB")
     draw = ImageDraw.Draw(img)
@@ -116,8 +112,6 @@ def _with_disc(photo: torch.Tensor) -> np.ndarray:
 
 def stress(kind: str, graph: str, size: int, k: int = 901) -> Target:
     """One stress target fitted with ``graph`` (``wrong_family``: bricks on the real wood photo)."""
-    from ..photo import PhotoError, load_photo
-
     if kind == "wrong_family":
         wood = real_photos(("wood",))
         if not wood:
@@ -126,6 +120,7 @@ def stress(kind: str, graph: str, size: int, k: int = 901) -> Target:
         return replace(target, name="stress:wrong_family")
     if kind == "object":  # the truth's render with a disc on it (a tensor: the loader adds nothing)
         base = synthetic(graph, k, size)
+        assert base.photo is not None  # a synthetic target always has its render
         photo = torch.from_numpy(_with_disc(base.photo)).permute(2, 0, 1)[None].float()
         return Target(f"stress:{kind}", "stress", kind, graph, photo, base.truth)
     rng = np.random.default_rng(5)
@@ -145,7 +140,7 @@ def stress(kind: str, graph: str, size: int, k: int = 901) -> Target:
     elif kind == "checker_text":
         pixels = _checker_text()
     else:
-        raise ValueError(f"unknown stress target {kind!r} (kinds: {', '.join(STRESS_KINDS)})")
+        raise OptionError(f"unknown stress target {kind!r} (kinds: {', '.join(STRESS_KINDS)})")
     with tempfile.TemporaryDirectory() as tmp:
         path = _save(Path(tmp), kind, pixels)
         try:

@@ -16,12 +16,13 @@ from .accuracy_metrics import pareto_front
 
 
 def _pyplot():
+    # matplotlib is optional (the bench extra): imported only when a chart is drawn
     try:
         import matplotlib
     except ImportError as exc:  # pragma: no cover - the bench extra installs it
         raise RuntimeError("charts need matplotlib: pip install 'blender-match[bench]'") from exc
     matplotlib.use("Agg", force=True)
-    import matplotlib.pyplot as plt
+    import matplotlib.pyplot as plt  # after use(): pyplot picks its backend on import
 
     return plt
 

@@ -16,6 +16,7 @@ import time
 import torch
 
 from ..diffmat.optim import FitResult
+from ..errors import OptionError
 
 
 def evolve(graph, loss, generations: int, *, population: int = 8, parents: int = 2, sigma: float = 0.15,
@@ -23,7 +24,7 @@ def evolve(graph, loss, generations: int, *, population: int = 8, parents: int =
            theta0: torch.Tensor | None = None) -> FitResult:
     """Run ``generations`` generations; ``seed`` is both the graph's noise seed and the sampler's."""
     if generations < 0 or population < 2 or not 1 <= parents <= population:
-        raise ValueError(f"evolve: bad settings generations={generations} population={population} parents={parents}")
+        raise OptionError(f"evolve: bad settings generations={generations} population={population} parents={parents}")
     device = next(loss.descriptor.parameters()).device
     mean = (graph.get_vector() if theta0 is None else theta0.detach().reshape(-1)).to(device).clamp(0, 1)
     rng = torch.Generator().manual_seed(seed)

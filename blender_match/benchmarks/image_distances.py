@@ -54,7 +54,8 @@ def resize(image: np.ndarray, side: int = SIDE) -> np.ndarray:
         f = size // side
         return image.reshape(side, f, side, f, -1).mean(axis=(1, 3))
     weights = _area_weights(size, side)
-    return np.einsum("ij,jkc,lk->ilc", weights, image, weights)
+    rows = np.einsum("ij,jkc->ikc", weights, image)  # one axis at a time: a single three-operand
+    return np.einsum("ikc,lk->ilc", rows, weights)  # einsum would loop over all four indices at once
 
 
 def _area_weights(size: int, side: int) -> np.ndarray:
@@ -94,7 +95,8 @@ def laplacian_pyramid(image: np.ndarray, levels: int = LEVELS) -> list[np.ndarra
 def _patches(level: np.ndarray, pick: np.ndarray | None) -> np.ndarray:
     """The 7x7xC patches of ``level`` (those at the flat indices ``pick``, when given): (N, 49 C)."""
     c = level.shape[2]
-    windows = np.lib.stride_tricks.sliding_window_view(level, (PATCH, PATCH), axis=(0, 1))
+    # numpy's stubs type ``axis`` as one index; a tuple of axes is documented and works
+    windows = np.lib.stride_tricks.sliding_window_view(level, (PATCH, PATCH), axis=(0, 1))  # type: ignore[call-overload]
     flat = windows.reshape(-1, c * PATCH * PATCH)
     return flat if pick is None else flat[pick]
 

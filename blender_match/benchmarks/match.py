@@ -11,15 +11,21 @@ time our fit needed to reach the paper optimiser's final loss by the paper's own
 """
 from __future__ import annotations
 
+import tempfile
+from pathlib import Path
+
 import torch
+
+from ..diffmat.descriptor import TextureDescriptor
+from ..diffmat.optim import PAPER_SCHEDULE, QUALITY_SCHEDULES, TargetLoss, fit
+from ..diffmat.render import render_maps
+from ..library import apply_params, load_library_graph, sample_params
+from ..pipeline import MatchOptions, match_photo
 
 DEFAULT_GRAPHS = ("plaster", "marble")
 
 
 def _target(name: str):
-    from ..diffmat.render import render_maps
-    from ..library import apply_params, load_library_graph, sample_params
-
     graph = load_library_graph(name)
     apply_params(graph, sample_params(name, 1))
     with torch.no_grad():
@@ -27,8 +33,6 @@ def _target(name: str):
 
 
 def _paper_loss_of(graph, loss, theta_list):
-    from ..diffmat.optim import PAPER_SCHEDULE
-
     stage = PAPER_SCHEDULE.stages[0]
     with torch.no_grad():
         return [float(loss(graph, t[None], stage.size, stage.scales)[0]) for t in theta_list]
@@ -52,11 +56,8 @@ def time_to_reach(graph, loss, result, threshold: float, stride: int = 5) -> flo
     return None
 
 
-def run(device: str = "cpu", graphs=DEFAULT_GRAPHS, paper_iterations: int = 30, quality: str = "balanced") -> list[dict]:
-    from ..diffmat.descriptor import TextureDescriptor
-    from ..diffmat.optim import PAPER_SCHEDULE, QUALITY_SCHEDULES, TargetLoss, fit
-    from ..library import load_library_graph
-
+def run(device: str = "cpu", graphs=DEFAULT_GRAPHS, paper_iterations: int = 30,
+        quality: str = "balanced") -> list[dict]:
     descriptor = TextureDescriptor().to(device)
     rows = []
     for name in graphs:
@@ -83,10 +84,6 @@ def run(device: str = "cpu", graphs=DEFAULT_GRAPHS, paper_iterations: int = 30, 
 def run_pipeline(device: str = "auto", photo: str | None = None, graph: str = "plaster", quality: str = "balanced",
                  size: int = 2048) -> dict:
     """One ``match_photo`` run on a real photo: total seconds and per-stage seconds."""
-    import tempfile
-    from pathlib import Path
-
-    from ..pipeline import MatchOptions, match_photo
 
     shared = Path(__file__).resolve().parents[2].parent / "shared" / "data" / "photos"
     photo = photo or str(shared / "real_plaster_wall_beige_desch18.png")

@@ -1,10 +1,16 @@
 """Timing and peak-memory measurement on CPU (and CUDA where used)."""
 from __future__ import annotations
 
+import json
 import resource
+import subprocess
+import sys
 import time
+from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
+
+import torch
 
 from ..allocator import release_freed_memory
 
@@ -43,15 +49,13 @@ class Measurement:
 
 
 @contextmanager
-def measure(device: str = "cpu"):
+def measure(device: str = "cpu") -> Iterator[Measurement]:
     """Measure wall time and the peak memory added while the block runs.
 
     CPU: peak resident set size above the resident size at entry (Linux resets the peak mark first,
     after handing the freed memory the process keeps back to the system).
     CUDA: ``torch.cuda.max_memory_allocated`` above the allocation at entry.
     """
-    import torch
-
     m = Measurement()
     if device.startswith("cuda"):
         torch.cuda.synchronize()
@@ -73,7 +77,7 @@ def measure(device: str = "cpu"):
 
 def best_of(fn, repeats: int = 3, device: str = "cpu") -> Measurement:
     """The fastest of ``repeats`` runs of ``fn`` (its peak memory is the largest seen)."""
-    best = None
+    best: Measurement | None = None
     peak = 0
     for _ in range(repeats):
         with measure(device) as m:
@@ -81,6 +85,8 @@ def best_of(fn, repeats: int = 3, device: str = "cpu") -> Measurement:
         peak = max(peak, m.peak_bytes)
         if best is None or m.seconds < best.seconds:
             best = m
+    if best is None:
+        raise ValueError(f"best_of: repeats must be at least 1, not {repeats}")
     best.peak_bytes = peak
     return best
 
@@ -93,11 +99,6 @@ def in_subprocess(function: str, *args, threads: int | None = None, timeout: flo
     has only imported, built and run one case, rather than that of a process whose allocator has
     already grown to hold every earlier case (which then shows ~0 added peak).
     """
-    import json
-    import subprocess
-    import sys
-
-    import torch
 
     threads = threads or torch.get_num_threads()
     module, _, name = function.partition(":")

@@ -23,6 +23,7 @@ import time
 
 import torch
 
+from ..bundled_graphs import build
 from .measure import best_of, in_subprocess, measure
 
 TARGETS = {"forward_512": 0.3, "backward_512": 0.6, "forward_2048": 5.0}
@@ -39,11 +40,9 @@ def case(kind: str, size: int, device: str = "cpu", repeats: int = 3, frozen_gen
     loss, backward). Returns the best warm time (or the cold time when ``repeats`` is 0), the cold
     run's peak memory above the baseline, and the node count. ``frozen_generators`` freezes every
     generator's parameters (the MATch paper's setting): their outputs are then cached."""
-    from ..bundled_graphs import build
-
     graph = build("example").to(device)
     if frozen_generators:
-        for name, node in graph.nodes.items():
+        for name, node in graph.node_items():
             if node.spec.kind == "generator":
                 graph.freeze(name)
 

@@ -4,8 +4,9 @@ What a user gets from ``blender-match match PHOTO`` without ``--graph``, on phot
 ground truth. Each photo (every ``*.jpg``, ``*.jpeg`` and ``*.png`` of the folder, sorted; by
 default ``../shared/data/photos_dev``, never part of the project) is read as ``match`` reads it
 (``load_photo`` at ``PHOTO_SIZE``) and goes through the product's automatic path
-(``select_and_fit``: every library graph ranked by its predicted start, the top 3 fitted under one
-shared budget, the best kept; graph seed ``SEED``). Per photo the row gives:
+(``pipeline.fit_photo``, ``match`` without writing: every library graph ranked by its predicted
+start, the top ``AUTO_CANDIDATES`` fitted under one shared budget, the best kept; graph seed
+``SEED``). Per photo the row gives:
 
 - ``graph`` (the kept graph), ``top3`` (the ranking's first three, the ones fitted) and
   ``family_match``: whether the kept graph belongs to the photo's category's family in
@@ -34,17 +35,30 @@ import io
 import json
 import statistics
 import sys
+import textwrap
 import time
 from pathlib import Path
+from typing import Any
 
+import numpy as np
 import torch
+from PIL import Image, ImageDraw
 
+from ..diffmat.optim import resize_square
+from ..diffmat.render import render_maps
+from ..errors import OptionError
+from ..photo import load_photo
+from ..pipeline import AUTO_CANDIDATES, PHOTO_SIZE, MatchOptions, fit_photo, resolve_device
+from ..safe_files import write_atomic
+from ..selection import shared_vgg
+from ..vocabulary import QUALITY_NAMES
+from .accuracy_targets import photos_dir
+from .image_distances import colour_distance, patch_distance
 from .markdown import table
 
 CATEGORIES_FILE = Path(__file__).with_name("photo_categories.json")
 SUFFIXES = (".jpg", ".jpeg", ".png")
 MISC = "misc"
-K = 3
 SEED = 0
 TILE = 192
 COLUMNS = ("photo", "category", "graph", "top3", "family_match", "seconds", "loss", "patch_distance",
@@ -53,8 +67,6 @@ COLUMNS = ("photo", "category", "graph", "top3", "family_match", "seconds", "los
 
 def default_photos() -> Path:
     """``photos_dev`` beside the bundled real photos in shared/ (``BLENDER_MATCH_SHARED`` honoured)."""
-    from .accuracy_targets import photos_dir
-
     return photos_dir().parent / "photos_dev"
 
 
@@ -64,7 +76,7 @@ def load_families(path: Path = CATEGORIES_FILE) -> dict[str, list[str]]:
         table = json.loads(Path(path).read_text(encoding="utf-8"))["categories"]
         return {category: list(entry["graphs"]) for category, entry in table.items()}
     except (OSError, ValueError, KeyError, TypeError) as exc:
-        raise ValueError(f"{path}: not a photo category table ({exc})") from None
+        raise OptionError(f"{path}: not a photo category table ({exc})") from None
 
 
 def find_photos(folder: Path) -> list[Path]:
@@ -97,22 +109,18 @@ def name_category(stem: str, known) -> str:
     return next((w for w in words if w in known), words[0])
 
 
-def evaluate(photo: torch.Tensor, quality: str, iterations: int | None, device) -> tuple[dict, torch.Tensor]:
+def evaluate(photo: torch.Tensor, options: MatchOptions) -> tuple[dict, torch.Tensor]:
     """Automatic selection and fitting of ``photo`` (1, 3, S, S) as ``match`` without ``--graph``
-    does: the row's measured fields and the kept material's flash render (1, 3, S, S)."""
-    from ..diffmat.render import render_maps
-    from ..selection.select import select_and_fit
-    from .image_distances import colour_distance, patch_distance
-
-    torch.manual_seed(SEED)  # as match_auto does
+    does (``pipeline.fit_photo``): the row's measured fields and the kept material's flash render
+    (1, 3, S, S)."""
     started = time.perf_counter()
-    best, fits = select_and_fit(photo, K, quality, SEED, device=device, iterations=iterations)
+    match = fit_photo(photo, options)
     seconds = time.perf_counter() - started
     with torch.no_grad():
-        render = render_maps(best.material(size=photo.shape[-1], seed=SEED))[:1].clamp(0, 1).cpu()
-    return {"graph": best.graph, "top3": [f.graph for f in fits], "seconds": round(seconds, 2),
-            "loss": best.result.loss_final, "patch_distance": patch_distance(photo, render),
-            "colour_distance": colour_distance(photo, render)}, render
+        render = render_maps(match.graph(size=photo.shape[-1], seed=options.seed))[:1].clamp(0, 1).cpu()
+    return {"graph": match.graph.name, "top3": [f["graph"] for f in match.report["fitted"]],
+            "seconds": round(seconds, 2), "loss": match.report["loss_final"],
+            "patch_distance": patch_distance(photo, render), "colour_distance": colour_distance(photo, render)}, render
 
 
 def summarise(rows: list[dict], seconds: float) -> dict:
@@ -143,7 +151,8 @@ def markdown(rows: list[dict], summary: dict, config: dict) -> str:
         "# bench photos",
         f"{config['photos_dir']}: quality {config['quality']}"
         + (f", {config['iterations']} iterations" if config["iterations"] else "")
-        + f", top {K} fitted, seed {SEED}, photo size {config['photo_size']} px, device {config['device']}, "
+        + f", top {AUTO_CANDIDATES} fitted, seed {SEED}, photo size {config['photo_size']} px, "
+        f"device {config['device']}, "
         f"torch threads {config['threads']}. family match: the kept graph is in the category's family "
         "(photo_categories.json); distances: photo against the kept material's flash render (lower is closer); "
         "seconds: selection and fitting; medians over the photos that did not fail",
@@ -152,11 +161,6 @@ def markdown(rows: list[dict], summary: dict, config: dict) -> str:
 
 def _tile(image: torch.Tensor | None):
     """A TILE-px PIL tile of a (1, 3, S, S) image in [0, 1]; dark grey when there is none."""
-    import numpy as np
-    from PIL import Image
-
-    from ..diffmat.optim import resize_square
-
     if image is None:
         return Image.new("RGB", (TILE, TILE), (48, 48, 48))
     small = resize_square(image.float().cpu(), TILE)[0].clamp(0, 1)
@@ -165,10 +169,6 @@ def _tile(image: torch.Tensor | None):
 
 def _label(row: dict):
     """The third tile of a sheet row: the kept graph (or the error), category and match."""
-    import textwrap
-
-    from PIL import Image, ImageDraw
-
     tile = Image.new("RGB", (TILE, TILE), (24, 24, 24))
     draw = ImageDraw.Draw(tile)
     if row["error"]:
@@ -186,8 +186,6 @@ def _label(row: dict):
 
 def sheet_png(entries: list[tuple]) -> bytes:
     """PNG bytes of the sheet: per (photo, render, row), photo | render | label, TILE px each."""
-    from PIL import Image
-
     sheet = Image.new("RGB", (3 * TILE, len(entries) * TILE), (0, 0, 0))
     for i, (photo, render, row) in enumerate(entries):
         for j, tile in enumerate((_tile(photo), _tile(render), _label(row))):
@@ -201,13 +199,9 @@ def run(device: str = "cpu", photos=None, quick: bool = False, quality: str | No
         limit: int | None = None, iterations: int | None = None, **_ignored) -> list[dict]:
     """Match every photo of ``photos`` (module docstring): the per-photo rows then the "all" row;
     [] with one line on stderr when the folder holds no photo. ``limit``: the first photos only."""
-    from ..photo import load_photo
-    from ..pipeline import PHOTO_SIZE, QUALITIES, resolve_device
-    from ..selection.descriptor import shared_vgg
-
     quality = quality or ("draft" if quick else "balanced")
-    if quality not in QUALITIES:
-        raise ValueError(f"quality {quality!r}: expected one of {', '.join(QUALITIES)}")
+    if quality not in QUALITY_NAMES:
+        raise OptionError(f"quality {quality!r}: expected one of {', '.join(QUALITY_NAMES)}")
     folder = Path(photos) if photos is not None else default_photos()
     paths = find_photos(folder)[:limit]
     if not paths:
@@ -217,17 +211,18 @@ def run(device: str = "cpu", photos=None, quick: bool = False, quality: str | No
     families = load_families()
     listed = listed_categories(folder)
     torch_device = resolve_device(device)
+    options = MatchOptions(quality=quality, seed=SEED, device=device, iterations=iterations)
     shared_vgg(torch_device)  # loaded once, before the clock of the first photo starts
     rows, entries = [], []
     started = time.perf_counter()
     for index, path in enumerate(paths):
         category = listed.get(path.name) or name_category(path.stem, families)
-        row = {c: None for c in COLUMNS} | {"photo": path.name, "category": category, "graph": "", "top3": [],
-                                           "family_match": False, "error": ""}
+        row: dict[str, Any] = {c: None for c in COLUMNS} | {"photo": path.name, "category": category, "graph": "",
+                                                            "top3": [], "family_match": False, "error": ""}
         photo = render = None
         try:
             photo = load_photo(path, PHOTO_SIZE)
-            fields, render = evaluate(photo, quality, iterations, torch_device)
+            fields, render = evaluate(photo, options)
             row |= fields | {"family_match": fields["graph"] in families.get(category, ())}
         except Exception as exc:  # one photo's failure is its row's, not the run's
             row["error"] = f"{type(exc).__name__}: {exc}"
@@ -240,11 +235,10 @@ def run(device: str = "cpu", photos=None, quick: bool = False, quality: str | No
               file=sys.stderr, flush=True)
     summary = summarise(rows, time.perf_counter() - started)
     if out is not None:
-        from ..safe_files import write_atomic
-
         out = Path(out)
         out.mkdir(parents=True, exist_ok=True)
-        config = {"photos_dir": str(folder), "quality": quality, "iterations": iterations, "k": K, "seed": SEED,
+        config = {"photos_dir": str(folder), "quality": quality, "iterations": iterations, "k": AUTO_CANDIDATES,
+                  "seed": SEED,
                   "photo_size": PHOTO_SIZE, "device": str(torch_device), "threads": torch.get_num_threads(),
                   "categories": {c: families.get(c, []) for c in sorted({r["category"] for r in rows})}}
         write_atomic(out / "results.json", json.dumps({"config": config, "rows": rows, "summary": summary},

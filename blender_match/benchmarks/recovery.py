@@ -34,6 +34,11 @@ from pathlib import Path
 
 import torch
 
+from ..diffmat.render import render_maps
+from ..library import apply_params, library_names, load_library_graph, sample_params
+from ..pipeline import fit_named_graph, match_schedule, resolve_device
+from ..safe_files import write_atomic
+from ..vocabulary import QUALITY_NAMES
 from .accuracy_metrics import NOVEL_LIGHT, image_rmse, make_truth, map_rmse
 from .charts import recovery_chart
 from .image_distances import patch_distance
@@ -43,7 +48,7 @@ TARGET_K0 = 300_000
 TRUTH_SEED = 7771
 FIT_SEED = 0
 MEASURES = ("patch", "maps", "novel")
-PRESETS = ("draft", "balanced", "best")
+PRESETS = QUALITY_NAMES
 QUICK_GRAPHS = ("asphalt", "bricks", "leather", "plaster", "raw_wood", "woven_fabric")
 SIZE = 512
 
@@ -51,8 +56,6 @@ SIZE = 512
 def measures(graph, theta: torch.Tensor, photo: torch.Tensor, truth, size: int, map_seed: int) -> dict[str, float]:
     """The three yardsticks of ``graph`` at ``theta`` (P,): the patch distance of its render with
     ``FIT_SEED``, the map and novel-light errors of its maps with ``map_seed``."""
-    from ..diffmat.render import render_maps
-
     theta = theta.reshape(1, -1).to(photo.device)
     with torch.no_grad():
         shown = graph(size=size, seed=FIT_SEED, theta=theta)
@@ -67,10 +70,6 @@ def measures(graph, theta: torch.Tensor, photo: torch.Tensor, truth, size: int, 
 def recover(name: str, k: int, size: int, presets, device, iterations: int | None = None) -> list[dict]:
     """One target (graph ``name``, variant ``k``) fitted by each preset (rescaled to ``iterations``
     when given): one row per preset."""
-    from ..diffmat.optim import quality_schedule
-    from ..library import apply_params, load_library_graph, sample_params
-    from ..pipeline import fit_named_graph
-
     graph = load_library_graph(name).to(device)
     apply_params(graph, sample_params(name, k))
     truth_theta = graph.get_vector()
@@ -80,7 +79,7 @@ def recover(name: str, k: int, size: int, presets, device, iterations: int | Non
     for preset in presets:
         fresh = load_library_graph(name)
         started = time.perf_counter()
-        result, start, theta0 = fit_named_graph(fresh, name, photo, quality_schedule(preset, iterations), FIT_SEED,
+        result, start, theta0 = fit_named_graph(fresh, name, photo, match_schedule(preset, iterations), FIT_SEED,
                                                  device)
         seconds = time.perf_counter() - started
         before = measures(fresh, theta0, photo, truth, size, TRUTH_SEED)
@@ -131,9 +130,6 @@ def markdown(summary: list[dict], rows: list[dict], config: dict) -> str:
 
 def run(device: str = "cpu", graphs=None, quick: bool = False, quality: str | None = None, out: Path | None = None,
         size: int | None = None, targets: int = 1, iterations: int | None = None, **_ignored) -> list[dict]:
-    from ..library import library_names
-    from ..pipeline import resolve_device
-
     torch_device = resolve_device(device)
     names = list(graphs or (QUICK_GRAPHS if quick else library_names()))
     presets = tuple(quality.split(",")) if quality else PRESETS  # "draft,balanced": those two
@@ -157,8 +153,6 @@ def run(device: str = "cpu", graphs=None, quick: bool = False, quality: str | No
 
 def write_results(out: Path, rows: list[dict], presets, config: dict):
     """results.json, results.md and recovery.png in ``out``."""
-    from ..safe_files import write_atomic
-
     out.mkdir(parents=True, exist_ok=True)
     summary = summarise(rows, presets)
     write_atomic(out / "results.json", json.dumps({"config": config, "summary": summary, "rows": rows},

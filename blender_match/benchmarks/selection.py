@@ -24,91 +24,125 @@ from __future__ import annotations
 
 import sys
 import time
+from dataclasses import asdict, dataclass, field
+
+from ..diffmat.descriptor import TextureDescriptor
+from ..diffmat.optim import TargetLoss, fit
+from ..pipeline import match_schedule, resolve_device
+from ..selection import available_models, rank_graphs
+from ..selection.bank import SampleSpace, describe, load_bank, nearest, render_images
+from ..selection.predictor import load_predictor, masked_l1
 
 TARGET_K0 = 100_000
 TARGET_SEED0 = 200_000
 
 
-def _reach(history, threshold: float):
+def _reach(history, threshold: float) -> int | None:
     return next((it for _, it, loss in history if loss <= threshold * (1 + 1e-9)), None)
 
 
-def run(device: str = "cpu", graphs=None, targets: int = 2, fit_targets: int = 1, iterations: int = 40,
-        quality: str = "draft", target_size: int = 256, method: str = "both", quick: bool = False, **_ignored) -> list[dict]:
-    from ..diffmat.descriptor import TextureDescriptor
-    from ..diffmat.optim import QUALITY_SCHEDULES, TargetLoss, fit
-    from ..pipeline import resolve_device
-    from ..selection.bank import SampleSpace, describe, load_bank, nearest, render_images
-    from ..selection.predictor import load_predictor, masked_l1
-    from ..selection.select import available_models, rank_graphs
+@dataclass
+class _GraphTally:
+    """One graph's results over its targets; ``row`` formats them as a row of the table."""
 
+    graph: str
+    targets: int = 0
+    top1: int = 0
+    top3: int = 0
+    ranks: list[int] = field(default_factory=list)
+    pred_err: float = 0.0
+    bank_err: float = 0.0
+    default_err: float = 0.0
+    its_default: list[int | None] = field(default_factory=list)
+    its_pred: list[int | None] = field(default_factory=list)
+    loss_default_start: list[float] = field(default_factory=list)
+    loss_pred_start: list[float] = field(default_factory=list)
+    seconds: float = 0.0
+
+    def ratios(self, budget: int) -> list[float]:
+        """Iterations from the prediction over iterations from the default, a miss counting as the
+        full ``budget``."""
+        return [(p if p is not None else budget) / max(1, d) for d, p in zip(self.its_default, self.its_pred) if d]
+
+    def row(self, budget: int) -> dict:
+        row = asdict(self)
+        ratios = self.ratios(budget)
+        row["its_ratio"] = round(sum(ratios) / len(ratios), 3) if ratios else None
+        row["top3_rate"] = round(self.top3 / max(1, self.targets), 3)
+        for key in ("ranks", "its_default", "its_pred", "loss_default_start", "loss_pred_start"):
+            row[key] = ",".join(str(v) for v in row[key])
+        return row
+
+
+def run(device: str = "cpu", graphs=None, targets: int = 2, fit_targets: int = 1, iterations: int = 40,
+        quality: str = "draft", target_size: int = 256, method: str = "both", quick: bool = False,
+        **_ignored) -> list[dict]:
     if quick:
         targets, fit_targets, iterations = 1, 1, 30
-    device = resolve_device(device)
+    torch_device = resolve_device(device)
     names = available_models(method)
     if not names:
         raise FileNotFoundError("no selection models: create them with `blender-match train --all`")
     chosen = [n for n in (graphs or names) if n in names]
-    schedule = QUALITY_SCHEDULES[quality].scaled(iterations)
-    descriptor = TextureDescriptor().to(device)
+    schedule = match_schedule(quality, iterations)
+    descriptor = TextureDescriptor().to(torch_device)
     materials: dict = {}
-    rows, started = [], time.perf_counter()
+    tallies, started = [], time.perf_counter()
     for name in chosen:
         space = SampleSpace(name)
-        graph = space.graph.to(device)
+        graph = space.graph.to(torch_device)
         model, bank = load_predictor(name), load_bank(name)
-        row = {"graph": name, "targets": 0, "top1": 0, "top3": 0, "ranks": [], "pred_err": 0.0, "bank_err": 0.0,
-               "default_err": 0.0, "its_default": [], "its_pred": [], "loss_default_start": [], "loss_pred_start": [],
-               "seconds": 0.0}
+        tally = _GraphTally(name)
         t0 = time.perf_counter()
         for t in range(targets):
             truth = space.vector(TARGET_K0 + t)
-            photo = render_images(graph, truth[None].to(device), TARGET_SEED0 + t, target_size)
-            ranking = rank_graphs(photo, method, device=device, materials=materials)
+            photo = render_images(graph, truth[None].to(torch_device), TARGET_SEED0 + t, target_size)
+            ranking = rank_graphs(photo, method, device=torch_device, materials=materials)
             rank = next(i for i, e in enumerate(ranking) if e["graph"] == name) + 1
-            row["targets"] += 1
-            row["ranks"].append(rank)
-            row["top1"] += rank == 1
-            row["top3"] += rank <= 3
-            desc = describe(photo, device)
+            tally.targets += 1
+            tally.ranks.append(rank)
+            tally.top1 += rank == 1
+            tally.top3 += rank <= 3
+            desc = describe(photo, torch_device)
             predicted = model(desc)[0].detach() if model is not None else space.default
             from_bank = nearest(bank, desc)[0]["theta"] if bank is not None else space.default
-            for key, theta in (("pred_err", predicted), ("bank_err", from_bank), ("default_err", space.default)):
-                row[key] += float(masked_l1(theta[None], truth[None], space.mask)) / targets
+
+            def error(theta) -> float:
+                return float(masked_l1(theta[None], truth[None], space.mask)) / targets
+
+            tally.pred_err += error(predicted)
+            tally.bank_err += error(from_bank)
+            tally.default_err += error(space.default)
             if t < fit_targets:
                 loss = TargetLoss(photo, descriptor)
                 base = fit(graph, loss, schedule, seed=0, theta0=space.default)
                 pred = fit(graph, loss, schedule, seed=0, theta0=predicted)
-                row["its_default"].append(_reach(base.history, base.loss_final))
-                row["its_pred"].append(_reach(pred.history, base.loss_final))
-                row["loss_default_start"].append(round(base.loss_initial, 5))
-                row["loss_pred_start"].append(round(pred.loss_initial, 5))
+                tally.its_default.append(_reach(base.history, base.loss_final))
+                tally.its_pred.append(_reach(pred.history, base.loss_final))
+                tally.loss_default_start.append(round(base.loss_initial, 5))
+                tally.loss_pred_start.append(round(pred.loss_initial, 5))
             graph.clear_cache()
-        row["seconds"] = round(time.perf_counter() - t0, 1)
-        rows.append(row)
-        print(f"bench selection: {name}: ranks {row['ranks']}, {row['seconds']}s", file=sys.stderr, flush=True)
-    summary = {"graph": "all", "targets": sum(r["targets"] for r in rows), "top1": sum(r["top1"] for r in rows),
-               "top3": sum(r["top3"] for r in rows), "ranks": "", "seconds": round(time.perf_counter() - started, 1)}
-    n = max(1, len(rows))
-    for key in ("pred_err", "bank_err", "default_err"):
-        summary[key] = sum(r[key] for r in rows) / n
-    pairs = [(d, p) for r in rows for d, p in zip(r["its_default"], r["its_pred"])]
-    reached = [(d, p) for d, p in pairs if p is not None and d]
-    summary["its_default"] = sum(d for d, _ in pairs if d) / max(1, len(pairs))
-    summary["its_pred"] = f"{len(reached)}/{len(pairs)} reached"
-    summary["loss_default_start"] = summary["loss_pred_start"] = ""
-    # ratio: iterations from the prediction over iterations from the default, a miss counting as the full budget
-    ratios = [(p if p is not None else schedule.iterations) / max(1, d) for d, p in pairs if d]
-    summary["its_ratio"] = round(sorted(ratios)[len(ratios) // 2], 3) if ratios else None
-    out = []
-    for r in rows:
-        rr = {k: v for k, v in r.items()}
-        rt = [(p if p is not None else schedule.iterations) / max(1, d) for d, p in zip(r["its_default"], r["its_pred"]) if d]
-        rr["its_ratio"] = round(sum(rt) / len(rt), 3) if rt else None
-        rr["top3_rate"] = round(r["top3"] / max(1, r["targets"]), 3)
-        for key in ("ranks", "its_default", "its_pred", "loss_default_start", "loss_pred_start"):
-            rr[key] = ",".join(str(v) for v in r[key])
-        out.append(rr)
-    summary["top3_rate"] = round(summary["top3"] / max(1, summary["targets"]), 3)
-    out.append({k: summary.get(k) for k in out[0]} if out else summary)
-    return out
+        tally.seconds = round(time.perf_counter() - t0, 1)
+        tallies.append(tally)
+        print(f"bench selection: {name}: ranks {tally.ranks}, {tally.seconds}s", file=sys.stderr, flush=True)
+    return _table(tallies, schedule.iterations, time.perf_counter() - started)
+
+
+def _table(tallies: list[_GraphTally], budget: int, seconds: float) -> list[dict]:
+    """A row per graph, then the row "all": sums of counts, means of errors, the median ratio."""
+    pairs = [(d, p) for t in tallies for d, p in zip(t.its_default, t.its_pred)]
+    ratios = sorted(r for t in tallies for r in t.ratios(budget))
+    count = max(1, len(tallies))
+    targets, top3 = sum(t.targets for t in tallies), sum(t.top3 for t in tallies)
+    summary = {"graph": "all", "targets": targets, "top1": sum(t.top1 for t in tallies), "top3": top3, "ranks": "",
+               "pred_err": sum(t.pred_err for t in tallies) / count,
+               "bank_err": sum(t.bank_err for t in tallies) / count,
+               "default_err": sum(t.default_err for t in tallies) / count,
+               "its_default": sum(d for d, _ in pairs if d) / max(1, len(pairs)),
+               "its_pred": f"{sum(1 for d, p in pairs if p is not None and d)}/{len(pairs)} reached",
+               "loss_default_start": "", "loss_pred_start": "", "seconds": round(seconds, 1),
+               "its_ratio": round(ratios[len(ratios) // 2], 3) if ratios else None,
+               "top3_rate": round(top3 / max(1, targets), 3)}
+    rows = [t.row(budget) for t in tallies]
+    rows.append({k: summary[k] for k in rows[0]} if rows else summary)
+    return rows

@@ -7,26 +7,21 @@ from pathlib import Path
 
 import torch
 
+from ..translator import Translation, translate
 from .measure import best_of
 
 DEFAULT_DIR = Path(__file__).resolve().parents[2].parent / "shared" / "data" / "sbs"
 
 
 def run(device: str = "cpu", files: list[Path] | None = None, repeats: int = 3) -> list[dict]:
-    from ..translator import translate
-
     files = [Path(f) for f in files] if files else sorted(DEFAULT_DIR.glob("*.sbs"))
     if not files:
         raise FileNotFoundError(f"{DEFAULT_DIR}: no .sbs files to translate (pass --files)")
     rows = []
     for path in files:
-        result = None
-
-        def do_translate():
-            nonlocal result
-            result = translate(path)
-
-        t = best_of(do_translate, repeats)
+        translations: list[Translation] = []
+        t = best_of(lambda: translations.append(translate(path)), repeats)
+        result = translations[-1]
         graph = result.graph.to(device)
         report = result.report
 

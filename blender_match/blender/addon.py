@@ -1,38 +1,39 @@
 """What the add-on's operators, panels and preferences share: its package name, preferences, the
-backend folder, the worker's Python, the library graphs (read from their ``.json`` files: the
-``library`` package imports torch, which Blender's Python lacks) and their thumbnails, result
-folders. Imported only inside Blender (bpy is imported inside the functions that use it).
+backend folder, the worker's Python, the library graphs (``library.catalog``, which imports
+without torch, which Blender's Python lacks) and their thumbnails, result folders. Imported only
+inside Blender.
 """
 from __future__ import annotations
 
-import json
 import os
 import re
 import time
 from pathlib import Path
 
+import bpy
+import bpy.utils.previews
+
+from ..errors import BlenderMatchError
+from ..library.catalog import GRAPHS_DIR, LibraryError, library_entry, library_names
+from ..vocabulary import DEFAULT_DEVICE, DEVICES, QUALITIES
+from ..worker.client import find_worker_python
+
 # The add-on's top package: "blender_match" as a plain module, "bl_ext.<repo>.blender_match" as an
 # extension. AddonPreferences.bl_idname and extension_path_user need it.
 ADDON_PACKAGE = __package__.rpartition(".")[0]
 PACKAGE_DIR = Path(__file__).resolve().parents[1]
-GRAPHS_DIR = PACKAGE_DIR / "library" / "graphs"
 
 NO_BACKEND = "No matching backend: set it up in Preferences > Add-ons > Blender Match"
 SIZES = {"1K": 1024, "2K": 2048, "4K": 4096}
 SIZE_ITEMS = [("1K", "1K", "1024 x 1024 pixels"), ("2K", "2K", "2048 x 2048 pixels"),
               ("4K", "4K", "4096 x 4096 pixels")]
-QUALITY_ITEMS = [("draft", "Draft", "Fast: a short fit, for a first look"),
-                 ("balanced", "Balanced", "The default: a good fit in a few minutes"),
-                 ("best", "Best", "The longest fit, for the final material")]
-DEVICE_ITEMS = [("auto", "Automatic", "A GPU (CUDA or Metal) when the worker has one, else the CPU"),
-                ("cpu", "CPU", "The processor"),
-                ("cuda", "CUDA", "An NVIDIA GPU"),
-                ("mps", "Metal", "An Apple GPU")]
+QUALITY_ITEMS = [(q.name, q.label, q.description) for q in QUALITIES]
+DEVICE_ITEMS = [(d.name, d.label, d.description) for d in DEVICES]
 PREFERENCES_DEVICE = ("default", "Preferences", "The default device set in the add-on's preferences")
 RESULT_FOLDER = "blender_match"
 
 
-class AddonError(ValueError):
+class AddonError(BlenderMatchError):
     """Something the user has to fix before the add-on can act (the message says what)."""
 
 
@@ -42,8 +43,6 @@ class AddonError(ValueError):
 def preferences(context=None):
     """The add-on's preferences, or None when it is registered without being enabled as an
     add-on (e.g. ``blender_match.register()`` in a script)."""
-    import bpy
-
     context = context or bpy.context
     addon = context.preferences.addons.get(ADDON_PACKAGE)
     return addon.preferences if addon is not None else None
@@ -52,8 +51,6 @@ def preferences(context=None):
 def backend_dir(create: bool = False) -> Path:
     """The folder of the backend's virtual environment: the extension's user folder, or, for an
     add-on loaded as a plain module (no extension to own a folder), one under the user's scripts."""
-    import bpy
-
     try:
         return Path(bpy.utils.extension_path_user(ADDON_PACKAGE, path="backend", create=create))
     except ValueError:  # "The package does not name an extension"
@@ -65,13 +62,9 @@ def backend_dir(create: bool = False) -> Path:
 
 def worker_python(context=None) -> str:
     """The Python that runs the worker: the preference, else the backend's; AddonError if none."""
-    from ..worker.client import find_worker_python
-
     prefs = preferences(context)
     preferred = (prefs.worker_python if prefs is not None else "").strip()
     if preferred:
-        import bpy
-
         preferred = bpy.path.abspath(preferred)
     python = find_worker_python(preferred or None, backend_dir())
     if python is None:
@@ -84,7 +77,7 @@ def worker_python(context=None) -> str:
 
 def default_device(context=None) -> str:
     prefs = preferences(context)
-    return prefs.default_device if prefs is not None else "auto"
+    return prefs.default_device if prefs is not None else DEFAULT_DEVICE
 
 
 def resolve_device(device: str, context=None) -> str:
@@ -97,23 +90,19 @@ _GRAPHS: dict | None = None
 
 
 def library_graphs() -> dict[str, dict]:
-    """Library graph name -> its metadata (name, description, exposed, exposed_params), read
-    from ``library/graphs/*.json`` (those with their ``.sbs``), sorted by name."""
+    """Library graph name -> its metadata (name, description, exposed, exposed_params), from the
+    library's catalogue, sorted by name; a graph whose metadata cannot be read is left out."""
     global _GRAPHS
     if _GRAPHS is None:
         graphs = {}
-        for path in sorted(GRAPHS_DIR.glob("*.json")):
-            if not (GRAPHS_DIR / f"{path.stem}.sbs").is_file():
-                continue
+        for name in library_names():
             try:
-                entry = json.loads(path.read_text(encoding="utf-8"))
-            except (OSError, UnicodeDecodeError, json.JSONDecodeError):
+                entry = library_entry(name)
+            except LibraryError:
                 continue
-            if isinstance(entry, dict):
-                graphs[path.stem] = {"name": entry.get("name", path.stem),
-                                     "description": entry.get("description", ""),
-                                     "exposed": list(entry.get("exposed") or []),
-                                     "exposed_params": dict(entry.get("exposed_params") or {})}
+            graphs[name] = {"name": entry.get("name", name), "description": entry.get("description", ""),
+                            "exposed": list(entry.get("exposed") or []),
+                            "exposed_params": dict(entry.get("exposed_params") or {})}
         _GRAPHS = graphs
     return _GRAPHS
 
@@ -141,8 +130,6 @@ def graph_icon(name: str) -> int:
     if not path.is_file():
         return 0
     if _PREVIEWS is None:
-        import bpy.utils.previews
-
         _PREVIEWS = bpy.utils.previews.new()
     if name not in _PREVIEWS:
         _PREVIEWS.load(name, str(path), "IMAGE")
@@ -152,8 +139,6 @@ def graph_icon(name: str) -> int:
 def release_previews() -> None:
     global _PREVIEWS, _GRAPHS
     if _PREVIEWS is not None:
-        import bpy.utils.previews
-
         bpy.utils.previews.remove(_PREVIEWS)
         _PREVIEWS = None
     _GRAPHS = None
@@ -181,8 +166,6 @@ def scene_key(scene) -> int:
 
 def redraw_ui(context=None) -> None:
     """Redraw the panels showing the add-on (its progress bar, the preferences)."""
-    import bpy
-
     wm = (context or bpy.context).window_manager
     if wm is None:
         return
@@ -203,16 +186,12 @@ def redraw_ui(context=None) -> None:
 
 
 def blend_is_saved() -> bool:
-    import bpy
-
     return bool(bpy.data.filepath)
 
 
 def results_root() -> Path:
     """``//blender_match`` next to the saved .blend, else a folder in Blender's session temporary
     folder (removed when Blender quits: the caller packs the images then)."""
-    import bpy
-
     if bpy.data.filepath:
         return Path(bpy.path.abspath("//" + RESULT_FOLDER))
     return Path(bpy.app.tempdir or os.environ.get("TMPDIR", "/tmp")) / RESULT_FOLDER
@@ -227,7 +206,7 @@ def new_result_folder(stem: str) -> tuple[Path, list[Path]]:
     """Create a new, empty ``<root>/<stem>_<timestamp>[_n]`` folder (never an existing one); the
     folder and the list of folders created for it (to remove if the job leaves nothing)."""
     root = results_root()
-    created = []
+    created: list[Path] = []
     missing = []
     parent = root
     while not parent.exists():

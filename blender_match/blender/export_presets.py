@@ -47,17 +47,19 @@ from pathlib import Path
 
 import numpy as np
 
+from ..errors import BlenderMatchError
+from ..vocabulary import PBR_USAGES, USAGES
 from .material_builder import graph_name, map_path, read_report, srgb_to_linear
 
 PRESETS = ("gltf", "unreal", "unity")
 EXTENSIONS = {"PNG": ".png", "OPEN_EXR": ".exr"}
 BITS = {"PNG": (8, 16), "OPEN_EXR": (16, 32)}
-REQUIRED = ("basecolor", "normal", "roughness", "metallic")
-OPTIONAL = ("height", "ambientocclusion")
+REQUIRED = PBR_USAGES
+OPTIONAL = tuple(u for u in USAGES if u not in REQUIRED)
 _COLOR_MODES = {1: "BW", 3: "RGB", 4: "RGBA"}
 
 
-class ExportError(ValueError):
+class ExportError(BlenderMatchError):
     """An export that cannot be done (names the option or file and the problem)."""
 
 
@@ -129,7 +131,7 @@ def export_maps(result_dir, out_dir, preset, size=None, bits=8, file_format="PNG
     ``size``: resize every map to ``size`` x ``size`` pixels (default: the result's size).
     ``name``: the files' stem (default: the graph's name).
     """
-    import bpy
+    import bpy  # here, not at the top: the packing helpers serve without Blender
 
     _check_choice("export preset", preset, PRESETS)
     _check_choice("file format", file_format, EXTENSIONS)

@@ -30,16 +30,20 @@ import tempfile
 import time
 from pathlib import Path
 
+import bpy
+
+from ..errors import BlenderMatchError
+from ..vocabulary import DEFAULT_QUALITY, FITTING, STAGE_TITLES
 from ..worker import client, protocol
+from ..worker.backend_setup import BackendSetup
 from . import addon, parameters
+from .material_builder import assign_material, build_material
 
 JOBS: dict = {}      # scene key -> the scene's running job
 LAST: dict = {}      # scene key -> {"state", "message", "graph", "loss", "seconds", "material", "folder", ...}
 SERVICES: dict = {}  # "probe" / "setup" -> the running or last ProbeJob / SetupJob
 TIMERS: dict = {}    # key -> (window_manager, timer) of a running modal operator
 
-STAGE_TITLES = {"reading photo": "Reading photo", "selecting": "Selecting", "fitting": "Fitting",
-                "writing maps": "Writing maps"}
 
 
 class JobError(addon.AddonError):
@@ -51,7 +55,7 @@ def stage_text(event: dict | None) -> str:
     if not event:
         return "Starting the worker"
     stage = event.get("stage") or ""
-    if stage == "fitting":
+    if stage == FITTING:
         index, count = event.get("graph_index"), event.get("graph_count")
         text = f"Fitting graph {index} of {count}" if index and count else "Fitting"
         if event.get("graph"):
@@ -169,7 +173,7 @@ class _Job:
                 self.on_stopped()
         except Exception as exc:  # noqa: BLE001 - a job must always end, with a message
             self.state = "failed"
-            self.message = f"{type(exc).__name__}: {exc}" if not isinstance(exc, ValueError) else str(exc)
+            self.message = str(exc) if isinstance(exc, BlenderMatchError) else f"{type(exc).__name__}: {exc}"
             try:
                 self.on_stopped()
             except Exception:  # noqa: BLE001
@@ -243,10 +247,6 @@ class _SceneJob(_Job):
 
     def _build(self, report: dict, name=None):
         """A new material from the result folder (any datablock made before an error is removed)."""
-        import bpy
-
-        from .material_builder import build_material
-
         before_materials, before_images = set(bpy.data.materials), set(bpy.data.images)
         try:
             material = build_material(self.out_dir, name=name, pack=self.pack, tiling=self.tiling)
@@ -282,22 +282,18 @@ class MatchJob(_SceneJob):
     kind = "match"
 
     def on_finished(self, report: dict):
-        import bpy
-
-        from .material_builder import assign_material
-
         material = self._build(report)
         obj = bpy.data.objects.get(self.object_name) if self.object_name else None
-        assigned = False
+        assigned_to = None  # the name of the object the material went on
         if obj is not None and hasattr(obj.data, "materials"):
             if obj.material_slots and 0 <= self.slot_index < len(obj.material_slots):
                 obj.material_slots[self.slot_index].material = material
-                assigned = True
-            else:
-                assigned = assign_material(obj, material)
+                assigned_to = obj.name
+            elif assign_material(obj, material):
+                assigned_to = obj.name
         loss = report.get("loss_final")
         text = f"Matched {report.get('graph')}: material \"{material.name}\""
-        text += f" on {obj.name}" if assigned else " (no object to put it on)"
+        text += f" on {assigned_to}" if assigned_to is not None else " (no object to put it on)"
         if isinstance(loss, (int, float)):
             text += f", loss {loss:.4g}"
         if isinstance(report.get("seconds"), (int, float)):
@@ -306,7 +302,7 @@ class MatchJob(_SceneJob):
         if self.notes:
             text += "; " + "; ".join(self.notes)
         self.state, self.message = "finished", text
-        self._outcome(report, object=obj.name if assigned else None)
+        self._outcome(report, object=assigned_to)
 
 
 class RenderJob(_SceneJob):
@@ -318,29 +314,31 @@ class RenderJob(_SceneJob):
         self.old_material = old_material
 
     def on_finished(self, report: dict):
-        import bpy
-
         material = self._build(report)
         obj = bpy.data.objects.get(self.object_name) if self.object_name else None
         old = bpy.data.materials.get(self.old_material)
-        placed = None
+        placed_on = None  # the name of the object whose slot now holds the new material
         if obj is not None and old is not None:
-            slots = list(obj.material_slots)
-            if 0 <= self.slot_index < len(slots) and slots[self.slot_index].material == old:
-                placed = self.slot_index
-            else:  # the slot changed while the job ran: the first slot still holding the old one
-                placed = next((i for i, s in enumerate(slots) if s.material == old), None)
+            placed = self._slot_holding(list(obj.material_slots), old)
             if placed is not None:
                 obj.material_slots[placed].material = material
+                placed_on = obj.name
         what = "Edited" if self.kind == "edit" else "Re-rendered"
         size = report.get("size")
         text = f"{what} \"{self.old_material}\" at {size} px: new material \"{material.name}\""
-        text += f" on {obj.name}" if placed is not None else " (the old one is no longer in a slot: not assigned)"
+        text += f" on {placed_on}" if placed_on is not None else " (the old one is no longer in a slot: not assigned)"
         text += f"; maps in {self.out_dir}"
         if self.notes:
             text += "; " + "; ".join(self.notes)
         self.state, self.message = "finished", text
-        self._outcome(report, object=obj.name if placed is not None else None, replaced=self.old_material)
+        self._outcome(report, object=placed_on, replaced=self.old_material)
+
+    def _slot_holding(self, slots: list, old) -> int | None:
+        """The job's slot when it still holds ``old``; else (the slots changed while the job ran)
+        the first slot that does; None when none does."""
+        if 0 <= self.slot_index < len(slots) and slots[self.slot_index].material == old:
+            return self.slot_index
+        return next((i for i, s in enumerate(slots) if s.material == old), None)
 
 
 # --- starting jobs -------------------------------------------------------------------------------
@@ -367,8 +365,6 @@ def _target(context):
 def image_photo(image) -> tuple[Path, bool]:
     """The photo file of an image datablock: its own file when it is on disk unchanged, else a
     temporary PNG written from its pixels. (path, whether it is temporary)."""
-    import bpy
-
     if image is None:
         raise JobError("no photo image chosen")
     if image.source == "FILE" and not image.packed_file and not image.is_dirty and image.filepath:
@@ -412,12 +408,10 @@ def _worker(python: str, request: dict) -> client.WorkerJob:
     return worker
 
 
-def start_match(context, *, photo=None, image=None, graph="AUTO", size=2048, quality="balanced",
+def start_match(context, *, photo=None, image=None, graph="AUTO", size=2048, quality=DEFAULT_QUALITY,
                 device="default", seed=0, pack=False, tiling=1.0, iterations=0) -> MatchJob:
     """Start matching the photo (a file path, or an image datablock ``image``) with ``graph``
     ('AUTO': automatic selection); JobError when it cannot start (nothing changed then)."""
-    import bpy
-
     scene = context.scene
     _check_idle(scene)
     python = worker_python(context)
@@ -471,8 +465,6 @@ def start_render(context, material, size: int, *, values: dict | None = None, de
                  pack=False) -> RenderJob:
     """Re-render ``material`` (made by a match) at ``size`` from its stored parameters, with
     ``values`` ({"exposed.NAME": value}) put in when given (an edit), into a new folder."""
-    import bpy
-
     scene = context.scene
     _check_idle(scene)
     try:
@@ -527,7 +519,7 @@ class ProbeJob(_Job):
 
     kind = "probe"
 
-    def __init__(self, worker):
+    def __init__(self, worker) -> None:
         super().__init__(worker)
         self.report: dict | None = None
         SERVICES["probe"] = self
@@ -561,8 +553,6 @@ class SetupJob:
     kind = "setup"
 
     def __init__(self, target_dir, base_python, pip_args=()):
-        from ..worker.backend_setup import BackendSetup
-
         self.setup = BackendSetup(target_dir, base_python, pip_args=pip_args)
         self.target_dir = Path(target_dir)
         self.state = "running"

@@ -31,20 +31,18 @@ from pathlib import Path
 
 import numpy as np
 
-REPORT_FILE = "report.json"
-PARAMS_FILE = "params.json"
+from ..colour import SRGB_GAMMA, SRGB_KNEE, SRGB_OFFSET, SRGB_SCALE, SRGB_SLOPE
+from ..errors import ResultFolderError
+from ..vocabulary import OUTPUTS, PARAMS_FILE, REPORT_FILE
+
 PROPERTY = "blender_match"
 BUMP_SCALE = 0.02  # metres of relief for the full 0..1 height range: a subtle bump, not a cliff
 
 # usage -> (node label, colour space, Principled input it feeds directly or None), in the order
 # the image nodes are stacked top to bottom.
-IMAGE_MAPS = {
-    "basecolor": ("Base Color", "sRGB", "Base Color"),
-    "roughness": ("Roughness", "Non-Color", "Roughness"),
-    "metallic": ("Metallic", "Non-Color", "Metallic"),
-    "normal": ("Normal", "Non-Color", None),
-    "height": ("Height", "Non-Color", None),
-}
+IMAGE_MAPS = {usage: (OUTPUTS[usage].label, OUTPUTS[usage].colour_space, principled)
+              for usage, principled in (("basecolor", "Base Color"), ("roughness", "Roughness"),
+                                        ("metallic", "Metallic"), ("normal", None), ("height", None))}
 
 # Node columns, left to right (x in node-editor units), and the vertical step between images.
 _X = {"coords": -1500, "mapping": -1300, "images": -1000, "converters": -650, "shader": -400,
@@ -52,15 +50,13 @@ _X = {"coords": -1500, "mapping": -1300, "images": -1000, "converters": -650, "s
 _ROW = -300
 
 
-class ResultFolderError(ValueError):
-    """A result folder that cannot be used (names the folder or file and the problem)."""
-
-
 def srgb_to_linear(values):
     """sRGB-encoded values in [0, 1] -> linear (IEC 61966-2-1). Blender's colour sockets and
-    OpenEXR files hold linear colour, while the base-colour PNG holds sRGB-encoded values."""
+    OpenEXR files hold linear colour, while the base-colour PNG holds sRGB-encoded values. The
+    curve is ``blender_match.colour``'s, which the engine's renderer applies to tensors."""
     v = np.clip(np.asarray(values, dtype=np.float32), 0.0, 1.0)
-    return np.where(v <= 0.04045, v / 12.92, ((v + 0.055) / 1.055) ** 2.4).astype(np.float32)
+    curve = ((v + SRGB_OFFSET) / SRGB_SCALE) ** SRGB_GAMMA
+    return np.where(v <= SRGB_KNEE, v / SRGB_SLOPE, curve).astype(np.float32)
 
 
 def read_report(result_dir) -> dict:
@@ -105,7 +101,7 @@ def build_material(result_dir, name=None, pack=False, tiling=1.0):
     "<name> <usage>". ``pack`` packs the images into the .blend. ``tiling`` repeats the texture
     that many times per UV unit. Everything is checked before any datablock is created.
     """
-    import bpy
+    import bpy  # here, not at the top: read_report and srgb_to_linear serve without Blender
 
     if not tiling > 0:
         raise ValueError(f"tiling must be positive, not {tiling}")

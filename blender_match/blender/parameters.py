@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import json
 
+from ..errors import BlenderMatchError
 from . import addon
 
 PROPERTY = "blender_match"        # the material's custom property (material_builder.PROPERTY)
@@ -18,7 +19,7 @@ COLLECTION = "blender_match_params"  # the Material collection property of the s
 PREFIX = "exposed."
 
 
-class ParameterError(ValueError):
+class ParameterError(BlenderMatchError):
     """Stored parameters that cannot be edited (the message says why)."""
 
 
@@ -100,7 +101,7 @@ def populate(material) -> int:
 
 def slider_values(material) -> dict:
     """``{"exposed.NAME": value}`` of the material's sliders."""
-    values = {}
+    values: dict[str, float | list[float]] = {}
     for item in getattr(material, COLLECTION):
         if item.kind == "COLOR":
             values[PREFIX + item.name] = [round(float(c), 6) for c in item.color]

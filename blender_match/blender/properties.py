@@ -6,9 +6,17 @@ here: it lives in ``match_job``'s registry, written only on the main thread.
 """
 
 import bpy
-from bpy.props import (BoolProperty, CollectionProperty, EnumProperty, FloatProperty, FloatVectorProperty,
-                       PointerProperty, StringProperty)
+from bpy.props import (
+    BoolProperty,
+    CollectionProperty,
+    EnumProperty,
+    FloatProperty,
+    FloatVectorProperty,
+    PointerProperty,
+    StringProperty,
+)
 
+from ..vocabulary import DEFAULT_QUALITY
 from . import addon
 
 _GRAPH_ITEMS: list = []  # Blender needs the enum items of a callback kept alive
@@ -36,7 +44,7 @@ class BLENDER_MATCH_PG_settings(bpy.types.PropertyGroup):
                                  description="An image of this file to use as the photo")
     graph: EnumProperty(name="Graph", items=graph_items,
                         description="The procedural graph to fit (Automatic: pick the best)")
-    quality: EnumProperty(name="Quality", items=addon.QUALITY_ITEMS, default="balanced")
+    quality: EnumProperty(name="Quality", items=addon.QUALITY_ITEMS, default=DEFAULT_QUALITY)
     size: EnumProperty(name="Size", items=addon.SIZE_ITEMS, default="2K",
                        description="Size of the texture maps written")
     device: EnumProperty(name="Device", items=[addon.PREFERENCES_DEVICE, *addon.DEVICE_ITEMS], default="default")

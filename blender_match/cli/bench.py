@@ -1,8 +1,11 @@
 """``blender-match bench [WHAT]``: run benchmarks and print their figures as a table."""
 from __future__ import annotations
 
+import importlib
 import json
 from pathlib import Path
+
+import torch
 
 SUITES = ("nodes", "translator", "library", "match", "accuracy", "selection", "recovery", "photos")
 
@@ -39,13 +42,10 @@ def print_table(rows: list[dict]):
 
 
 def run(args) -> int:
-    import importlib
-
-    import torch
-
     if args.threads:
         torch.set_num_threads(args.threads)
     args.what = args.what or ("accuracy" if args.out else "nodes")
+    # the suite is chosen by name at run time: SUITES are the modules of blender_match.benchmarks
     module = importlib.import_module(f"blender_match.benchmarks.{args.what}")
     options = {"files": args.files, "graphs": args.graphs, "paper_iterations": args.paper_iterations,
                "quality": args.quality, "quick": args.quick or None, "out": args.out, "photos": args.photos,

@@ -18,6 +18,9 @@ import tempfile
 import tomllib
 from pathlib import Path
 
+from ..errors import OptionError
+from ..version import __version__
+
 PACKAGE_DIR = Path(__file__).resolve().parents[1]
 MANIFEST = PACKAGE_DIR.parent / "blender_manifest.toml"
 EXCLUDE = ("__pycache__", "*.pyc", "*.pyo", ".*", "*.zip", "*.egg-info")
@@ -37,29 +40,27 @@ def blender_ext_tool() -> Path:
     """Blender's extension command-line tool inside the installed bpy module."""
     spec = importlib.util.find_spec("bpy")
     if spec is None or not spec.origin:
-        raise ValueError("build-extension needs the bpy module for Blender's extension tool "
+        raise OptionError("build-extension needs the bpy module for Blender's extension tool "
                          "(pip install 'blender-match[blender]')")
     found = sorted(Path(spec.origin).parent.glob("*/scripts/addons_core/bl_pkg/cli/blender_ext.py"))
     if not found:
-        raise ValueError(f"{Path(spec.origin).parent}: Blender's extension tool (blender_ext.py) not found in bpy")
+        raise OptionError(f"{Path(spec.origin).parent}: Blender's extension tool (blender_ext.py) not found in bpy")
     return found[-1]
 
 
 def read_manifest(path: Path) -> dict:
-    from .. import __version__
-
     try:
         manifest = tomllib.loads(path.read_text(encoding="utf-8"))
     except FileNotFoundError:
         raise FileNotFoundError(f"{path}: extension manifest not found (build from a source checkout, "
                                 "or give --manifest)") from None
     except tomllib.TOMLDecodeError as exc:
-        raise ValueError(f"{path}: not valid TOML ({exc})") from None
+        raise OptionError(f"{path}: not valid TOML ({exc})") from None
     if manifest.get("id") != PACKAGE_DIR.name:
-        raise ValueError(f"{path}: id {manifest.get('id')!r} must be the package's name {PACKAGE_DIR.name!r} "
+        raise OptionError(f"{path}: id {manifest.get('id')!r} must be the package's name {PACKAGE_DIR.name!r} "
                          "(the worker imports the installed folder by that name)")
     if manifest.get("version") != __version__:
-        raise ValueError(f"{path}: version {manifest.get('version')!r} differs from blender_match "
+        raise OptionError(f"{path}: version {manifest.get('version')!r} differs from blender_match "
                          f"{__version__} (update one of them)")
     return manifest
 
@@ -93,7 +94,7 @@ def validate(tool: Path, source: Path) -> None:
     code, messages = _tool(tool, "validate", str(source))
     if code != 0:
         problems = [m for m in messages if not m.startswith(("Success", "Error parsing TOML"))] or messages
-        raise ValueError(f"extension validation failed: {'; '.join(problems) or f'exit status {code}'}")
+        raise OptionError(f"extension validation failed: {'; '.join(problems) or f'exit status {code}'}")
 
 
 def build(out_dir: Path, manifest_path: Path = MANIFEST, overwrite: bool = False) -> Path:
@@ -112,7 +113,7 @@ def build(out_dir: Path, manifest_path: Path = MANIFEST, overwrite: bool = False
             built = Path(build_dir) / zip_path.name
             code, messages = _tool(tool, "build", "--source-dir", str(source), "--output-filepath", str(built))
             if code != 0 or not built.is_file():
-                raise ValueError(f"extension build failed: {'; '.join(messages) or f'exit status {code}'}")
+                raise OptionError(f"extension build failed: {'; '.join(messages) or f'exit status {code}'}")
             validate(tool, built)
             os.replace(built, zip_path)
     return zip_path
@@ -133,6 +134,6 @@ def run(args) -> int:
         print(f"{manifest['id']} {manifest['version']}: valid extension")
         return 0
     if not args.out:
-        raise ValueError("build-extension: give --out DIR (or --check)")
+        raise OptionError("build-extension: give --out DIR (or --check)")
     print(build(args.out, args.manifest, args.overwrite))
     return 0

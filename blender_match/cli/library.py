@@ -10,6 +10,16 @@ import json
 import math
 from pathlib import Path
 
+import numpy as np
+import torch
+from PIL import Image, ImageDraw, ImageFont
+
+from ..diffmat.functional.common import check_size
+from ..diffmat.render import render_maps
+from ..errors import OptionError
+from ..library import library_entry, library_names, load_library_graph
+from ..safe_files import write_atomic
+
 LABEL_HEIGHT = 18
 COLUMNS = 4
 
@@ -25,8 +35,6 @@ def add_parser(sub):
 
 
 def entries() -> list[dict]:
-    from ..library import library_entry, library_names
-
     out = []
     for name in library_names():
         e = library_entry(name)
@@ -37,12 +45,6 @@ def entries() -> list[dict]:
 
 def contact_sheet(names: list[str], size: int = 256, seed: int = 0):
     """A PIL image: each graph rendered under the flash, its name below, in rows of COLUMNS."""
-    import numpy as np
-    import torch
-    from PIL import Image, ImageDraw, ImageFont
-
-    from ..diffmat.render import render_maps
-    from ..library import load_library_graph
 
     cols = min(COLUMNS, max(1, len(names)))
     rows = max(1, math.ceil(len(names) / cols))
@@ -61,8 +63,6 @@ def contact_sheet(names: list[str], size: int = 256, seed: int = 0):
 
 
 def run(args) -> int:
-    from ..library import library_names
-
     if args.sheet is None and not args.json:
         for e in entries():
             print(f"{e['name']:<18} nodes {e['nodes']:>4}  params {e['params_optimizable']:>4}  "
@@ -71,15 +71,12 @@ def run(args) -> int:
     if args.json:
         print(json.dumps(entries(), indent=1))
     if args.sheet is not None:
-        from ..diffmat.functional.common import check_size
-        from ..safe_files import write_atomic
-
         if args.sheet.exists() and not args.overwrite:
             raise FileExistsError(f"{args.sheet}: already exists (use --overwrite to replace it)")
         check_size(args.size, "--size")
         names = library_names()
         if not names:
-            raise ValueError("library: no library graphs are built (python -m blender_match.library.build)")
+            raise OptionError("library: no library graphs are built (python -m blender_match.library.build)")
         buf = io.BytesIO()
         contact_sheet(names, args.size, args.seed).save(buf, format="PNG")
         write_atomic(args.sheet, buf.getvalue(), overwrite=args.overwrite)

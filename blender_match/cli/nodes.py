@@ -11,6 +11,9 @@ import json
 import re
 from pathlib import Path
 
+from ..diffmat.nodes import all_names, all_specs
+from ..errors import OptionError
+
 _ROW = re.compile(r"^\|\s*([A-Za-z0-9_\-]+)\s*\|\s*(\d+)\s*\|")
 DEFAULT_USAGE = Path(__file__).resolve().parents[2].parent / "shared" / "reference" / "node_usage.md"
 
@@ -37,7 +40,7 @@ def read_usage(path: Path) -> dict[str, dict[str, int]]:
         if section and match:
             tables[section][match.group(1)] = int(match.group(2))
     if not tables["library"]:
-        raise ValueError(f"{path}: no library-node usage rows found")
+        raise OptionError(f"{path}: no library-node usage rows found")
     return tables
 
 
@@ -50,8 +53,6 @@ def coverage(usage: dict[str, int], implemented: set[str]) -> tuple[float, list[
 
 
 def run(args) -> int:
-    from ..diffmat.nodes import all_names, all_specs
-
     if args.coverage:
         tables = read_usage(args.usage)
         names = all_names()

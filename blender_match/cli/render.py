@@ -12,6 +12,21 @@ import json
 import time
 from pathlib import Path
 
+import torch
+
+from ..bundled_graphs import BUNDLED
+from ..diffmat.params_file import apply_params, load_params
+from ..diffmat.render import render_maps
+from ..errors import OptionError
+from ..image_files import write_png
+from ..library import library_names, sample_params
+from ..material_maps import write_maps
+from ..pipeline import load_graph
+from ..pipeline.result_folder import refuse_existing, write_json
+from ..vocabulary import PARAMS_FILE
+
+RENDER_FILE = "render.png"
+
 
 def add_parser(sub):
     p = sub.add_parser("render", help="render a graph's maps (bundled or library name, or .sbs file)")
@@ -29,48 +44,27 @@ def add_parser(sub):
 
 
 def run(args) -> int:
-    from ..bundled_graphs import BUNDLED
-
     if args.list:
         for name, (_, doc) in sorted(BUNDLED.items()):
             print(f"{name:<20} {doc}")
         return 0
     if not args.source or not args.out:
-        raise ValueError("render: give a SOURCE and --out DIR (or --list)")
-    import torch
-
-    from ..diffmat.render import render_maps
-    from ..image_files import write_png
-    from ..material_maps import write_maps
-
-    render_path = args.out / "render.png"
-    if render_path.exists() and not args.overwrite:
-        raise FileExistsError(f"{render_path}: already exists (use --overwrite to replace it)")
-    params_path = args.out / "params.json"
+        raise OptionError("render: give a SOURCE and --out DIR (or --list)")
+    render_path = args.out / RENDER_FILE
+    refuse_existing([render_path], args.overwrite)
+    params_path = args.out / PARAMS_FILE
     if args.sample is not None:
-        from ..library import library_names
-
         if args.source not in library_names():
-            raise ValueError(f"{args.source}: --sample needs a library graph ({', '.join(library_names())})")
+            raise OptionError(f"{args.source}: --sample needs a library graph ({', '.join(library_names())})")
         if args.sample < 0:
-            raise ValueError(f"--sample: expected a non-negative integer, got {args.sample}")
-        if params_path.exists() and not args.overwrite:
-            raise FileExistsError(f"{params_path}: already exists (use --overwrite to replace it)")
-    from ..pipeline import load_graph
-
+            raise OptionError(f"--sample: expected a non-negative integer, got {args.sample}")
+        refuse_existing([params_path], args.overwrite)
     graph = load_graph(args.source)
     if args.sample is not None:
-        from ..diffmat.params_file import apply_params
-        from ..safe_files import write_atomic
-        from ..library import sample_params
-
         params = sample_params(args.source, args.sample)
         apply_params(graph, params, f"{args.source} sample {args.sample}")
-        text = json.dumps({"graph": graph.name, "sample": args.sample, "params": params}, indent=1)
-        write_atomic(params_path, text.encode("utf-8"), overwrite=args.overwrite)
+        write_json(params_path, {"graph": graph.name, "sample": args.sample, "params": params}, args.overwrite)
     if args.params:
-        from ..diffmat.params_file import load_params
-
         load_params(graph, args.params)
     start = time.perf_counter()
     with torch.no_grad():

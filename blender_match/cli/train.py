@@ -11,22 +11,34 @@ Progress goes to stderr, one summary line per graph to stdout.
 """
 from __future__ import annotations
 
-import sys
 import time
 from pathlib import Path
 
+import torch
+
+from ..errors import OptionError
+from ..library import library_names
+from ..pipeline import resolve_device
+from ..selection.bank import BANK_SIZE, bank_is_current
+from ..selection.predictor import (
+    DEFAULT_EPOCHS,
+    DEFAULT_RENDER_STEPS,
+    DEFAULT_SAMPLES,
+    predictor_is_current,
+    train_graph,
+)
+from ._progress import progress_bar
+
 
 def add_parser(sub):
-    from ..selection.bank import BANK_SIZE
-    from ..selection.predictor import DEFAULT_EPOCHS, DEFAULT_RENDER_STEPS, DEFAULT_SAMPLES
-
     p = sub.add_parser("train", help="train graph-selection models (predictors and sample banks)")
     which = p.add_mutually_exclusive_group(required=True)
     which.add_argument("--graph", nargs="+", metavar="NAME", help="library graphs to train")
     which.add_argument("--all", action="store_true", help="every library graph (up-to-date ones are skipped)")
     p.add_argument("--samples", type=int, default=DEFAULT_SAMPLES,
                    help=f"synthetic examples rendered per graph, bank included (default {DEFAULT_SAMPLES})")
-    p.add_argument("--epochs", type=int, default=DEFAULT_EPOCHS, help=f"epochs of the parameter loss (default {DEFAULT_EPOCHS})")
+    p.add_argument("--epochs", type=int, default=DEFAULT_EPOCHS,
+                   help=f"epochs of the parameter loss (default {DEFAULT_EPOCHS})")
     p.add_argument("--render-steps", type=int, default=DEFAULT_RENDER_STEPS,
                    help=f"steps of the rendering-loss phase (default {DEFAULT_RENDER_STEPS})")
     p.add_argument("--bank", type=int, default=BANK_SIZE, help=f"samples in the bank (default {BANK_SIZE})")
@@ -40,49 +52,44 @@ def add_parser(sub):
     p.set_defaults(run=run)
 
 
-class _Bar:
-    """A one-line progress bar on stderr."""
+class _TrainingProgress:
+    """A bar per phase of a graph's training (data, fit, render): steps done of the phase's
+    total, with the validation error while fitting."""
 
     def __init__(self, label: str):
-        self.label, self.start = label, time.perf_counter()
+        self.label, self.phase = label, None
+        self.bar = progress_bar(0, label)
 
     def __call__(self, event: dict):
-        done, total = event["done"], event["total"]
-        width = 24
-        filled = int(width * done / max(1, total))
-        extra = f" val {event['val_error']:.4f}" if "val_error" in event else ""
-        sys.stderr.write(f"\r{self.label:<15} {event['phase']:<6} [{'#' * filled}{'.' * (width - filled)}] "
-                         f"{done}/{total}{extra} {time.perf_counter() - self.start:6.0f}s ")
-        sys.stderr.flush()
+        if event["phase"] != self.phase:
+            self.phase = event["phase"]
+            self.bar.set_description_str(f"{self.label} {self.phase}", refresh=False)
+            self.bar.set_postfix_str("", refresh=False)
+            self.bar.reset(total=event["total"])
+        if "val_error" in event:
+            self.bar.set_postfix_str(f"val error {event['val_error']:.4f}", refresh=False)
+        self.bar.update(event["done"] - self.bar.n)
 
     def close(self):
-        sys.stderr.write("\n")
-        sys.stderr.flush()
+        self.bar.close()
 
 
 def run(args) -> int:
-    import torch
-
-    from ..library import library_names
-    from ..pipeline import resolve_device
-    from ..selection.bank import bank_is_current
-    from ..selection.predictor import predictor_is_current, train_graph
-
     if args.threads:
         torch.set_num_threads(args.threads)
     names = library_names() if args.all else args.graph
     unknown = [n for n in names if n not in library_names()]
     if unknown:
-        raise ValueError(f"train: {unknown[0]} is not a library graph ({', '.join(library_names())})")
+        raise OptionError(f"train: {unknown[0]} is not a library graph ({', '.join(library_names())})")
     if args.samples < 1 or args.epochs < 1 or args.render_steps < 0 or args.bank < 1:
-        raise ValueError("train: --samples, --epochs and --bank must be positive, --render-steps non-negative")
+        raise OptionError("train: --samples, --epochs and --bank must be positive, --render-steps non-negative")
     device = resolve_device(args.device)
     total = time.perf_counter()
     for name in names:
         if not args.force and predictor_is_current(name, args.models) and bank_is_current(name, args.models):
             print(f"{name}: up to date (skipped)")
             continue
-        bar = _Bar(name)
+        bar = _TrainingProgress(name)
         try:
             meta = train_graph(name, samples=args.samples, epochs=args.epochs, render_steps=args.render_steps,
                                bank_size=args.bank, directory=args.models, resume=args.resume, device=device,

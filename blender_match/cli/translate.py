@@ -11,6 +11,7 @@ import json
 from pathlib import Path
 
 from ..safe_files import write_atomic
+from ..translator import translate
 
 
 def add_parser(subparsers):
@@ -19,7 +20,8 @@ def add_parser(subparsers):
     parser.add_argument("sbs", metavar="GRAPH.sbs", help="the Substance package to translate")
     parser.add_argument("--out", metavar="DIR", default=".", help="folder for the generated program (default: .)")
     parser.add_argument("--report", metavar="FILE.json", help="write the coverage report (JSON) here")
-    parser.add_argument("--graph", metavar="NAME", help="which graph of the package (default: the first material graph)")
+    parser.add_argument("--graph", metavar="NAME",
+                        help="which graph of the package (default: the first material graph)")
     parser.add_argument("--mode", choices=("exposed", "exposed_plus", "all"), default="exposed_plus",
                         help="which parameters are optimisable (default: exposed_plus)")
     parser.add_argument("--overwrite", action="store_true", help="replace an existing program or report")
@@ -28,8 +30,6 @@ def add_parser(subparsers):
 
 
 def run(args) -> int:
-    from ..translator import translate
-
     result = translate(args.sbs, args.graph, args.mode)
     report = result.report
     program_path = Path(args.out) / f"{report['graph']}.py"

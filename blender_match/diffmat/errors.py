@@ -4,6 +4,8 @@ Every message names the offending thing (node, parameter, file) and the problem 
 the CLI and the Blender add-on can show it as it is.
 """
 
+from ..errors import BlenderMatchError
 
-class DiffMatError(ValueError):
+
+class DiffMatError(BlenderMatchError):
     """Bad input to the DiffMat engine: a wrong shape, an unknown mode, a value out of range."""

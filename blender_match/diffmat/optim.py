@@ -22,7 +22,7 @@ sooner by
 The result is the best parameters seen, not the last.
 
 A fit is deterministic for a given graph seed on a given device and thread count; ``progress``
-gets one event per iteration and ``cancel()`` is polled every iteration (``FitCancelled``).
+gets one event per iteration and ``cancel()`` is polled every iteration (``errors.Cancelled``).
 """
 from __future__ import annotations
 
@@ -33,13 +33,11 @@ from dataclasses import dataclass, field, replace
 import torch
 import torch.nn.functional as F
 
+from ..errors import Cancelled
+from ..vocabulary import QUALITY_NAMES
 from .descriptor import TextureDescriptor, style_loss
 from .errors import DiffMatError
 from .render import FlashCamera, render_maps
-
-
-class FitCancelled(Exception):
-    """``cancel()`` returned True during a fit."""
 
 
 @dataclass(frozen=True)
@@ -86,13 +84,19 @@ PAPER_SCHEDULE = Schedule("paper", (Stage(512, (512, 256, 128), 2000, 5e-4, fina
 # Learning rates measured on synthetic targets of plaster and bricks (60 steps at 128 px from the
 # defaults): 0.02 was best or within noise of the best on both; 0.04 lost 8-20% on bricks. Stage
 # sizes and iteration counts: `blender-match bench recovery` (docs/matching.md).
-QUALITY_SCHEDULES = {
-    "draft": Schedule("draft", (Stage(512, (128,), 48, 0.02, warmup=5),), patience=15),
-    "balanced": Schedule("balanced", (Stage(512, (128,), 120, 0.02, warmup=5),
-                                      Stage(512, (256, 128), 30, 0.008)), patience=25),
-    "best": Schedule("best", (Stage(512, (128,), 200, 0.02, warmup=5), Stage(512, (256, 128), 80, 0.008),
-                              Stage(512, (512, 256, 128), 30, 0.003)), patience=40),
-}
+# One schedule per quality of the vocabulary (``QUALITY_NAMES``), keyed and ordered as it is: a
+# quality added or renamed in one place and not the other fails here, at import.
+_PRESETS = {schedule.name: schedule for schedule in (
+    Schedule("draft", (Stage(512, (128,), 48, 0.02, warmup=5),), patience=15),
+    Schedule("balanced", (Stage(512, (128,), 120, 0.02, warmup=5),
+                          Stage(512, (256, 128), 30, 0.008)), patience=25),
+    Schedule("best", (Stage(512, (128,), 200, 0.02, warmup=5), Stage(512, (256, 128), 80, 0.008),
+                      Stage(512, (512, 256, 128), 30, 0.003)), patience=40),
+)}
+if set(_PRESETS) != set(QUALITY_NAMES):
+    raise RuntimeError(f"optimiser schedules {sorted(_PRESETS)} do not match the vocabulary's qualities "
+                       f"{sorted(QUALITY_NAMES)}")
+QUALITY_SCHEDULES = {name: _PRESETS[name] for name in QUALITY_NAMES}
 
 
 def quality_schedule(quality: str, iterations: int | None = None) -> Schedule:
@@ -171,6 +175,24 @@ def _learning_rate(stage: Stage, it: int) -> float:
     return stage.lr * (ratio + (1 - ratio) * 0.5 * (1 + math.cos(math.pi * it / max(1, stage.iterations))))
 
 
+def _advance(value: torch.Tensor, current: float, theta: torch.Tensor, optimizer: torch.optim.Adam,
+             best: torch.Tensor, lr: float) -> torch.optim.Adam:
+    """One Adam step from the point just evaluated (loss ``value``, its float ``current``), kept in
+    [0, 1]; after a non-finite loss, back to ``best`` with a fresh optimiser rather than follow a
+    NaN. Returns the optimiser to go on with."""
+    if math.isfinite(current):
+        value.backward()
+        if theta.grad is not None and torch.isfinite(theta.grad).all():
+            optimizer.step()
+    else:
+        optimizer = torch.optim.Adam([theta], lr=lr)
+    with torch.no_grad():
+        if not math.isfinite(current):
+            theta.copy_(best[None])
+        theta.clamp_(0.0, 1.0)
+    return optimizer
+
+
 def fit(graph, loss: TargetLoss, schedule: Schedule, *, seed: int = 0, theta0: torch.Tensor | None = None,
         progress=None, cancel=None, keep_snapshots: bool = False) -> FitResult:
     """Fit ``graph``'s trainable parameters to ``loss``'s photo following ``schedule``.
@@ -181,7 +203,7 @@ def fit(graph, loss: TargetLoss, schedule: Schedule, *, seed: int = 0, theta0: t
     is left unchanged: apply ``result.theta`` with ``graph.set_vector``. ``keep_snapshots``
     records (seconds, theta) after every step (benchmarks re-score them afterwards).
     Raises DiffMatError when the graph has no trainable parameter or the start's loss is not
-    finite, and FitCancelled when ``cancel()`` returns True.
+    finite, and Cancelled when ``cancel()`` returns True.
     """
     if graph.num_params() == 0:
         raise DiffMatError(f"graph {graph.name}: nothing to fit (no trainable parameter)")
@@ -204,25 +226,16 @@ def fit(graph, loss: TargetLoss, schedule: Schedule, *, seed: int = 0, theta0: t
         result.stopped = "budget"
         for it in range(stage.iterations):
             if cancel is not None and cancel():
-                raise FitCancelled()
+                raise Cancelled()
             t_iter = time.perf_counter()
             for group in optimizer.param_groups:
                 group["lr"] = _learning_rate(stage, it)
             optimizer.zero_grad(set_to_none=True)
             value = loss(graph, theta, stage.size, stage.scales, seed)[0]
             current = float(value.detach())
-            if math.isfinite(current):
-                if current < stage_best:  # the point evaluated is the one before this step
-                    stage_best, best = current, theta.detach()[0].clone()
-                value.backward()
-                if torch.isfinite(theta.grad).all():
-                    optimizer.step()
-            else:  # step back to the best point rather than follow a NaN
-                optimizer = torch.optim.Adam([theta], lr=stage.lr)
-            with torch.no_grad():
-                if not math.isfinite(current):
-                    theta.copy_(best[None])
-                theta.clamp_(0.0, 1.0)
+            if math.isfinite(current) and current < stage_best:  # the point before this step
+                stage_best, best = current, theta.detach()[0].clone()
+            optimizer = _advance(value, current, theta, optimizer, best, stage.lr)
             result.iterations += 1
             now = time.perf_counter()
             seconds_per_cost = (now - t_iter) / costs[index]

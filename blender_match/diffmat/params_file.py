@@ -15,6 +15,7 @@ from pathlib import Path
 
 import torch
 
+from ..safe_files import write_atomic
 from .errors import DiffMatError
 
 
@@ -32,8 +33,6 @@ def graph_params(graph) -> dict[str, float | list[float]]:
 
 def save_params(graph, path: Path, overwrite: bool = False):
     """Write the graph's parameters to ``path`` (atomically; refuses to replace a file unless asked)."""
-    from ..safe_files import write_atomic
-
     text = json.dumps({"graph": graph.name, "params": graph_params(graph)}, indent=1)
     write_atomic(Path(path), text.encode("utf-8"), overwrite=overwrite)
 

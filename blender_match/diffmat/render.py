@@ -18,6 +18,7 @@ from dataclasses import dataclass
 
 import torch
 
+from ..colour import LINEAR_KNEE, SRGB_GAMMA, SRGB_KNEE, SRGB_OFFSET, SRGB_SCALE, SRGB_SLOPE
 from .errors import DiffMatError
 from .functional.common import param4d
 
@@ -44,13 +45,17 @@ class FlashCamera:
 
 
 def srgb_to_linear(x: torch.Tensor) -> torch.Tensor:
+    """sRGB-encoded values, clamped to [0, 1], to linear (the curve of ``blender_match.colour``)."""
     x = x.clamp(0.0, 1.0)
-    return torch.where(x <= 0.04045, x / 12.92, ((x + 0.055) / 1.055).clamp_min(EPS) ** 2.4)
+    curve = ((x + SRGB_OFFSET) / SRGB_SCALE).clamp_min(EPS) ** SRGB_GAMMA
+    return torch.where(x <= SRGB_KNEE, x / SRGB_SLOPE, curve)
 
 
 def linear_to_srgb(x: torch.Tensor) -> torch.Tensor:
+    """Linear values, clamped to [0, 1], to sRGB-encoded (the curve of ``blender_match.colour``)."""
     x = x.clamp(0.0, 1.0)
-    return torch.where(x <= 0.0031308, x * 12.92, 1.055 * x.clamp_min(1e-8) ** (1 / 2.4) - 0.055)
+    curve = SRGB_SCALE * x.clamp_min(1e-8) ** (1 / SRGB_GAMMA) - SRGB_OFFSET
+    return torch.where(x <= LINEAR_KNEE, x * SRGB_SLOPE, curve)
 
 
 def _rgb(x: torch.Tensor) -> torch.Tensor:

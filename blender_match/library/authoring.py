@@ -2,12 +2,9 @@
 keys, and constant maps pinned so the optimiser cannot move them."""
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
-
+from ..translator.runtime import SbsGraph
+from ..vocabulary import AUTHORED_USAGES
 from .expressions import const
-
-if TYPE_CHECKING:
-    from ..translator.runtime import SbsGraph
 
 # Substance's blending-mode codes (the blend node's ``blendingmode``)
 COPY, ADD, SUBTRACT, MULTIPLY, ADD_SUB, MAX, MIN, SWITCH, DIVIDE, OVERLAY, SCREEN, SOFT_LIGHT = range(12)
@@ -27,13 +24,10 @@ def constant_map(g: SbsGraph, name: str, value: float) -> str:
     return name
 
 
-MATERIAL_MAPS = ("basecolor", "normal", "roughness", "metallic", "height")
-
-
 def set_material_outputs(g: SbsGraph, ambient_occlusion: str | None = None):
     """Name the five material maps after the nodes of the same names (and optionally the ambient
     occlusion node)."""
-    for usage in MATERIAL_MAPS:
+    for usage in AUTHORED_USAGES:
         g.set_output(usage, usage)
     if ambient_occlusion:
         g.set_output("ambientocclusion", ambient_occlusion)

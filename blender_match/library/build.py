@@ -31,6 +31,9 @@ import tempfile
 from pathlib import Path
 
 from ..diffmat.errors import DiffMatError
+from ..errors import BlenderMatchError
+from ..safe_files import write_atomic
+from ..translator import load_sbs_graph
 from . import GRAPHS_DIR, build_source, source_module, source_names
 from .sbs_export import export_sbs
 
@@ -133,8 +136,6 @@ def _rounded(rng):
 
 def build_one(name: str) -> tuple[str, str]:
     """(sbs text, metadata json text) of source ``name``."""
-    from ..translator import load_sbs_graph
-
     module = source_module(name)
     doc = (module.__doc__ or "").strip()
     if not doc:
@@ -155,10 +156,10 @@ def build_one(name: str) -> tuple[str, str]:
                            f"({report['unsupported']})")
     mapping = match_nodes(graph, translated)
     ex = translated.exposed
-    exposed_params = {}
+    exposed_params: dict[str, dict[str, object]] = {}
     values = ex.values()
     for pname, kind in ex.kinds.items():
-        info = {"kind": kind}
+        info: dict[str, object] = {"kind": kind}
         if kind == "float":
             v = _real(values[pname])
             info["default"] = [round(x, 6) for x in v] if len(v) > 1 else round(v[0], 6)
@@ -187,14 +188,12 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("names", nargs="*", help="sources to build (default: all)")
     parser.add_argument("--check", action="store_true", help="only check that the shipped files are up to date")
     args = parser.parse_args(argv)
-    from ..safe_files import write_atomic
-
     names = args.names or source_names()
     failed = stale = 0
     for name in names:
         try:
             sbs, meta = build_one(name)
-        except (DiffMatError, ValueError, OSError, ImportError, AttributeError, TypeError) as exc:
+        except (BlenderMatchError, ValueError, OSError, ImportError, AttributeError, TypeError) as exc:
             print(f"{name}: FAILED: {exc}", file=sys.stderr)
             failed += 1
             continue

@@ -10,8 +10,6 @@ from __future__ import annotations
 import itertools
 from typing import Sequence
 
-TYPE_CODES = {1: 256, 2: 512, 3: 1024, 4: 2048}
-
 
 class Expr:
     """A node of a function graph: ``function`` applied to ``inputs`` (port -> Expr), with ``data``."""

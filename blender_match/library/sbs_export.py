@@ -34,12 +34,11 @@ from lxml import etree
 
 from ..diffmat.errors import DiffMatError
 from ..diffmat.functional import function_graph as fg_engine
+from ..safe_files import write_atomic
+from ..translator.type_codes import type_code
+from ..vocabulary import OUTPUTS
 
 FORMAT_VERSION = "1.1.0.202302"
-USAGE_NAMES = {"basecolor": "baseColor", "normal": "normal", "roughness": "roughness", "metallic": "metallic",
-               "height": "height", "ambientocclusion": "ambientOcclusion"}
-USAGE_LABELS = {"basecolor": "Base Color", "normal": "Normal", "roughness": "Roughness", "metallic": "Metallic",
-                "height": "Height", "ambientocclusion": "Ambient Occlusion"}
 # stock packages whose file name is not the graph's name
 PACKAGE_OF = {"blur_hq_grayscale": "blur_hq", "invert_grayscale": "invert", "switch_grayscale": "blend_switch",
               "switch": "blend_switch", "multi_switch": "blend_switch", "multi_switch_grayscale": "blend_switch",
@@ -49,8 +48,13 @@ PACKAGE_OF = {"blur_hq_grayscale": "blur_hq", "invert_grayscale": "invert", "swi
               "make_it_tile_patch_grayscale": "make_it_tile_patch", "vector_warp_grayscale": "vector_warp",
               "make_it_tile_photo_grayscale": "make_it_tile_photo", "tile_generator": "pattern_tile_generator",
               "tile_sampler": "pattern_tile_sampler", "shape": "pattern_shape", "clouds_2": "noise_clouds_2"}
-ARRAYS = {"gradient": ("gradientrgba", ("positions", "position", 1), ("colors", "value", None)),
-          "curve": ("curveluminance", ("positions", "position", 2), ("lefts", "left", 2), ("rights", "right", 2))}
+# an array field: (parameter, cell parameter, values per key; None: all the values divided evenly)
+ArrayField = tuple[str, str, int | None]
+# atomic nodes whose array parameters are written as a paramsArray: (array name, its fields)
+ARRAYS: dict[str, tuple[str, tuple[ArrayField, ...]]] = {
+    "gradient": ("gradientrgba", (("positions", "position", 1), ("colors", "value", None))),
+    "curve": ("curveluminance", (("positions", "position", 2), ("lefts", "left", 2), ("rights", "right", 2))),
+}
 
 
 def _num(x: float) -> str:
@@ -112,16 +116,6 @@ def _parameter(parent, name: str, *, kind=None, value=None, dynamic=None, relati
 
 
 # ---- function graphs ---------------------------------------------------------------------------
-def _type_code(kind: str, n: int) -> int:
-    if kind == "bool":
-        return 4
-    if kind == "string":
-        return 16384
-    if kind == "int":
-        return 16 << (n - 1)
-    return 256 << (n - 1)
-
-
 def infer_types(graph: dict) -> dict[str, tuple[str, int]]:
     """(kind, components) of every node of a function graph, from function names and inputs."""
     nodes = graph["nodes"]
@@ -150,16 +144,23 @@ def infer_types(graph: dict) -> dict[str, tuple[str, int]]:
         elif fn == "cartesian":
             t = ("float", 2)
         elif fn == "ifelse":
-            t = out.get(ins.get("ifpath"), first)
+            t = _input_type(out, ins, "ifpath", first)
         elif fn == "sequence":
-            t = out.get(ins.get("seqlast"), first)
+            t = _input_type(out, ins, "seqlast", first)
         elif fn in ("add", "sub", "mul", "div", "min", "max", "mod", "pow", "atan2"):
-            a, b = out.get(ins.get("a"), first), out.get(ins.get("b"), first)
+            a, b = _input_type(out, ins, "a", first), _input_type(out, ins, "b", first)
             t = a if a[1] >= b[1] else b
         else:
             t = first
         out[nid] = t
     return out
+
+
+def _input_type(types: dict[str, tuple[str, int]], inputs: dict[str, str], port: str,
+                default: tuple[str, int]) -> tuple[str, int]:
+    """The type of the node wired to ``port``, ``default`` when the port is not wired."""
+    ref = inputs.get(port)
+    return default if ref is None else types.get(ref, default)
 
 
 def _dynamic(parent, graph: dict, uids) -> None:
@@ -177,7 +178,7 @@ def _dynamic(parent, graph: dict, uids) -> None:
         pn = etree.SubElement(pnodes, "paramNode")
         _v(pn, "uid", ids[nid])
         _v(pn, "function", fn)
-        _v(pn, "type", _type_code(kind, n))
+        _v(pn, "type", type_code(kind, n))
         ins = node.get("inputs") or {}
         if ins:
             conns = etree.SubElement(pn, "connections")
@@ -282,9 +283,21 @@ def export_sbs(graph, description: str = "", *, author: str = "blender_match") -
     graph.order()  # checks for cycles
     order = stable_order(graph)
     channels = probe_channels(graph)
-    bindings = getattr(graph, "bindings", {})
-    exposed = getattr(graph, "exposed", None)
 
+    pkg = _package(name, description)
+    deps_el = etree.SubElement(pkg, "dependencies")
+    g = _graph_element(etree.SubElement(pkg, "content"), name, description, author, uids)
+    _paraminputs(g, getattr(graph, "exposed", None), uids)
+    out_uid = _graph_outputs(g, graph, channels, uids)
+    dep_uid = _comp_nodes(g, graph, order, channels, out_uid, uids)
+    _graph_footer(g, graph, out_uid)
+    _dependencies(deps_el, dep_uid)
+    text = etree.tostring(pkg, pretty_print=True, xml_declaration=True, encoding="UTF-8")
+    return text.decode("utf-8")
+
+
+def _package(name: str, description: str) -> etree._Element:
+    """The ``package`` root with its identification fields (the file uid derives from the name)."""
     pkg = etree.Element("package")
     _v(pkg, "identifier", name)
     if description:
@@ -293,9 +306,10 @@ def export_sbs(graph, description: str = "", *, author: str = "blender_match") -
     _v(pkg, "updaterVersion", FORMAT_VERSION)
     _v(pkg, "fileUID", "{" + str(uuid.uuid5(uuid.NAMESPACE_URL, f"blender_match/library/{name}")) + "}")
     _v(pkg, "versionUID", "0")
-    deps_el = etree.SubElement(pkg, "dependencies")
-    dep_uid: dict[str, str] = {}
-    content = etree.SubElement(pkg, "content")
+    return pkg
+
+
+def _graph_element(content, name: str, description: str, author: str, uids) -> etree._Element:
     g = etree.SubElement(content, "graph")
     _v(g, "identifier", name)
     _v(g, "uid", uids())
@@ -306,39 +320,50 @@ def export_sbs(graph, description: str = "", *, author: str = "blender_match") -
     if description:
         _v(attrs, "description", description)
     _v(g, "graphtype", "material")
+    return g
 
-    # exposed parameters
+
+def _paraminputs(g, exposed, uids) -> None:
+    """The exposed parameters (none for a plain MaterialGraph) as ``paraminput``s."""
     pis = etree.SubElement(g, "paraminputs")
-    if exposed is not None:
-        values = exposed.values()
-        for pname, kind in exposed.kinds.items():
-            pi = etree.SubElement(pis, "paraminput")
-            _v(pi, "identifier", pname)
-            _v(pi, "uid", uids())
-            a = etree.SubElement(pi, "attributes")
-            _v(a, "label", pname.replace("_", " ").title())
-            if kind == "float":
-                val = [float(x) for x in torch.as_tensor(values[pname]).detach().reshape(-1)]
-                lo, hi = exposed.ranges[pname]
-                _v(pi, "type", _type_code("float", len(val)))
-                _const(etree.SubElement(pi, "defaultValue"), "float", val)
-                widget = etree.SubElement(pi, "defaultWidget")
-                is_color = len(val) in (3, 4) and (lo, hi) == (0.0, 1.0)
-                _v(widget, "name", "color" if is_color else "slider")
-                opts = etree.SubElement(widget, "options")
-                for oname, oval in (("min", _num(lo)), ("max", _num(hi)), ("step", "0.01"), ("clamp", "1")):
-                    o = etree.SubElement(opts, "option")
-                    _v(o, "name", oname)
-                    _v(o, "value", oval)
-            else:
-                val = values[pname]
-                _v(pi, "type", _type_code(kind, 1))
-                _const(etree.SubElement(pi, "defaultValue"), kind, val)
-                widget = etree.SubElement(pi, "defaultWidget")
-                _v(widget, "name", {"int": "slider", "bool": "buttons", "string": "text"}[kind])
-            _v(pi, "group", "Parameters")
+    if exposed is None:
+        return
+    values = exposed.values()
+    for pname, kind in exposed.kinds.items():
+        pi = etree.SubElement(pis, "paraminput")
+        _v(pi, "identifier", pname)
+        _v(pi, "uid", uids())
+        a = etree.SubElement(pi, "attributes")
+        _v(a, "label", pname.replace("_", " ").title())
+        if kind == "float":
+            _float_paraminput(pi, values[pname], exposed.ranges[pname])
+        else:
+            _v(pi, "type", type_code(kind, 1))
+            _const(etree.SubElement(pi, "defaultValue"), kind, values[pname])
+            widget = etree.SubElement(pi, "defaultWidget")
+            _v(widget, "name", {"int": "slider", "bool": "buttons", "string": "text"}[kind])
+        _v(pi, "group", "Parameters")
 
-    # outputs
+
+def _float_paraminput(pi, value, value_range: tuple[float, float]) -> None:
+    """Type, default and widget of a float exposed parameter: a colour picker for 3/4 components
+    in [0, 1], a slider with the range otherwise."""
+    val = [float(x) for x in torch.as_tensor(value).detach().reshape(-1)]
+    lo, hi = value_range
+    _v(pi, "type", type_code("float", len(val)))
+    _const(etree.SubElement(pi, "defaultValue"), "float", val)
+    widget = etree.SubElement(pi, "defaultWidget")
+    is_color = len(val) in (3, 4) and (lo, hi) == (0.0, 1.0)
+    _v(widget, "name", "color" if is_color else "slider")
+    opts = etree.SubElement(widget, "options")
+    for oname, oval in (("min", _num(lo)), ("max", _num(hi)), ("step", "0.01"), ("clamp", "1")):
+        o = etree.SubElement(opts, "option")
+        _v(o, "name", oname)
+        _v(o, "value", oval)
+
+
+def _graph_outputs(g, graph, channels: dict[tuple[str, str], int], uids) -> dict[str, str]:
+    """The ``graphoutput``s with their usages; returns the uid of each usage's output."""
     gouts = etree.SubElement(g, "graphOutputs")
     out_uid: dict[str, str] = {}
     for usage, (src, o) in graph.outputs.items():
@@ -347,66 +372,38 @@ def export_sbs(graph, description: str = "", *, author: str = "blender_match") -
         out_uid[usage] = uids()
         _v(go, "uid", out_uid[usage])
         a = etree.SubElement(go, "attributes")
-        _v(a, "label", USAGE_LABELS[usage])
+        _v(a, "label", OUTPUTS[usage].label)
         us = etree.SubElement(etree.SubElement(go, "usages"), "usage")
         gray = channels.get((src, o), 4) == 1
         _v(us, "components", "L" if gray else "RGBA")
-        _v(us, "name", USAGE_NAMES[usage])
+        _v(us, "name", OUTPUTS[usage].sbs_usage)
         if gray:
             _v(go, "channels", 2)
         _v(go, "group", "Material")
+    return out_uid
 
-    # nodes
+
+def _comp_nodes(g, graph, order: list[str], channels: dict[tuple[str, str], int], out_uid: dict[str, str],
+                uids) -> dict[str, str]:
+    """The ``compNodes``: the graph's nodes laid out in columns by depth, then one output bridge per
+    usage in a last column. Returns the uid of each stock package the nodes instantiate."""
     comp = etree.SubElement(g, "compNodes")
     node_uid = {n: uids() for n in order}
     output_uid = {(n, o): uids() for n in order for o in graph.nodes[n].spec.outputs}
     depth = _depths(graph, order)
     rows: dict[int, int] = defaultdict(int)
+    dep_uid: dict[str, str] = {}
+    bindings = getattr(graph, "bindings", {})
     for n in order:
-        node = graph.nodes[n]
-        spec = node.spec
         cn = etree.SubElement(comp, "compNode")
         _v(cn, "uid", node_uid[n])
         _v(cn, "GUIName", n)
         gl = etree.SubElement(cn, "GUILayout")
         _v(gl, "gpos", f"{160 * depth[n]} {160 * rows[depth[n]]} 0")
         rows[depth[n]] += 1
-        outs = etree.SubElement(cn, "compOutputs")
-        for o in spec.outputs:
-            co = etree.SubElement(outs, "compOutput")
-            _v(co, "uid", output_uid[(n, o)])
-            _v(co, "comptype", 2 if channels.get((n, o), 4) == 1 else 1)
-        links = [(slot.name, ref) for slot, ref in zip(spec.inputs, graph.links[n]) if ref is not None]
-        if links:
-            conns = etree.SubElement(cn, "connections")
-            for slot, (src, o) in links:
-                c = etree.SubElement(conns, "connection")
-                _v(c, "identifier", slot)
-                _v(c, "connRef", node_uid[src])
-                _v(c, "connRefOutput", output_uid[(src, o)])
-        impl = etree.SubElement(cn, "compImplementation")
-        bound = bindings.get(n, {})
-        if spec.kind == "atomic":
-            el = etree.SubElement(impl, "compFilter")
-            _v(el, "filter", spec.name)
-        else:
-            el = etree.SubElement(impl, "compInstance")
-            pkg_name = PACKAGE_OF.get(spec.name, spec.name)
-            if pkg_name not in dep_uid:
-                dep_uid[pkg_name] = uids()
-            _v(el, "path", f"pkg:///{spec.name}?dependency={dep_uid[pkg_name]}")
-        params = etree.SubElement(el, "parameters")
-        _node_params(params, node, bound, uids)
-        if node.seed:
-            _parameter(params, "randomseed", kind="int", value=[node.seed], relative_to=1)
-        if spec.name in ARRAYS and spec.kind == "atomic":
-            _arrays(el, node, uids)
-        if spec.kind != "atomic":
-            br = etree.SubElement(el, "outputBridgings")
-            for o in spec.outputs:
-                b = etree.SubElement(br, "outputBridging")
-                _v(b, "uid", output_uid[(n, o)])
-                _v(b, "identifier", o)
+        _comp_outputs(cn, graph.nodes[n].spec, n, channels, output_uid)
+        _connections(cn, graph, n, node_uid, output_uid)
+        _implementation(cn, graph.nodes[n], n, bindings.get(n, {}), output_uid, dep_uid, uids)
     last = 1 + max(depth.values(), default=0)
     for i, (usage, (src, o)) in enumerate(graph.outputs.items()):
         cn = etree.SubElement(comp, "compNode")
@@ -419,7 +416,61 @@ def export_sbs(graph, description: str = "", *, author: str = "blender_match") -
         _v(c, "connRefOutput", output_uid[(src, o)])
         ob = etree.SubElement(etree.SubElement(cn, "compImplementation"), "compOutputBridge")
         _v(ob, "output", out_uid[usage])
+    return dep_uid
 
+
+def _comp_outputs(cn, spec, n: str, channels: dict[tuple[str, str], int],
+                  output_uid: dict[tuple[str, str], str]) -> None:
+    outs = etree.SubElement(cn, "compOutputs")
+    for o in spec.outputs:
+        co = etree.SubElement(outs, "compOutput")
+        _v(co, "uid", output_uid[(n, o)])
+        _v(co, "comptype", 2 if channels.get((n, o), 4) == 1 else 1)
+
+
+def _connections(cn, graph, n: str, node_uid: dict[str, str], output_uid: dict[tuple[str, str], str]) -> None:
+    links = [(slot.name, ref) for slot, ref in zip(graph.nodes[n].spec.inputs, graph.links[n]) if ref is not None]
+    if not links:
+        return
+    conns = etree.SubElement(cn, "connections")
+    for slot, (src, o) in links:
+        c = etree.SubElement(conns, "connection")
+        _v(c, "identifier", slot)
+        _v(c, "connRef", node_uid[src])
+        _v(c, "connRefOutput", output_uid[(src, o)])
+
+
+def _implementation(cn, node, n: str, bound: dict, output_uid: dict[tuple[str, str], str],
+                    dep_uid: dict[str, str], uids) -> None:
+    """An atomic node as a ``compFilter``; any other as a ``compInstance`` of its stock package
+    (registered in ``dep_uid`` on first use) with output bridgings."""
+    spec = node.spec
+    impl = etree.SubElement(cn, "compImplementation")
+    if spec.kind == "atomic":
+        el = etree.SubElement(impl, "compFilter")
+        _v(el, "filter", spec.name)
+    else:
+        el = etree.SubElement(impl, "compInstance")
+        pkg_name = PACKAGE_OF.get(spec.name, spec.name)
+        if pkg_name not in dep_uid:
+            dep_uid[pkg_name] = uids()
+        _v(el, "path", f"pkg:///{spec.name}?dependency={dep_uid[pkg_name]}")
+    params = etree.SubElement(el, "parameters")
+    _node_params(params, node, bound, uids)
+    if node.seed:
+        _parameter(params, "randomseed", kind="int", value=[node.seed], relative_to=1)
+    if spec.name in ARRAYS and spec.kind == "atomic":
+        _arrays(el, node, uids)
+    if spec.kind != "atomic":
+        br = etree.SubElement(el, "outputBridgings")
+        for o in spec.outputs:
+            b = etree.SubElement(br, "outputBridging")
+            _v(b, "uid", output_uid[(n, o)])
+            _v(b, "identifier", o)
+
+
+def _graph_footer(g, graph, out_uid: dict[str, str]) -> None:
+    """Base parameters, options and root outputs of the graph."""
     base = etree.SubElement(g, "baseParameters")
     _parameter(base, "outputsize", kind="int", value=[0, 0], relative_to=1)
     _parameter(base, "format", kind="int", value=[0], relative_to=1)
@@ -435,6 +486,8 @@ def export_sbs(graph, description: str = "", *, author: str = "blender_match") -
         _v(ro, "format", 0)
         _v(ro, "usertag", "")
 
+
+def _dependencies(deps_el, dep_uid: dict[str, str]) -> None:
     for pkg_name, u in sorted(dep_uid.items()):
         d = etree.SubElement(deps_el, "dependency")
         _v(d, "filename", f"sbs://{pkg_name}.sbs")
@@ -442,14 +495,12 @@ def export_sbs(graph, description: str = "", *, author: str = "blender_match") -
         _v(d, "type", "package")
         _v(d, "fileUID", "0")
         _v(d, "versionUID", "0")
-    text = etree.tostring(pkg, pretty_print=True, xml_declaration=True, encoding="UTF-8")
-    return text.decode("utf-8")
 
 
 def _node_params(parent, node, bound: dict, uids):
     spec = node.spec
     values = node.values()
-    arrays = {f for f, _, _ in ARRAYS[spec.name][1:]} if spec.kind == "atomic" and spec.name in ARRAYS else set()
+    arrays = {f for f, _, _ in ARRAYS[spec.name][1]} if spec.kind == "atomic" and spec.name in ARRAYS else set()
     for p in spec.params:
         if p.name in bound:
             _parameter(parent, p.name, dynamic=bound[p.name], uids=uids)
@@ -475,11 +526,12 @@ def _node_params(parent, node, bound: dict, uids):
 
 
 def _arrays(el, node, uids):
-    name, *fields = ARRAYS[node.spec.name]
+    name, fields = ARRAYS[node.spec.name]
     values = node.values()
     data = {f: [float(x) for x in values[f].detach().reshape(-1)] for f, _, _ in fields}
-    positions = data[fields[0][0]]
-    keys = len(positions) // fields[0][2]
+    positions, _, position_width = fields[0]
+    assert position_width is not None  # the positions field always has a fixed width
+    keys = len(data[positions]) // position_width
     arrs = etree.SubElement(el, "paramsArrays")
     arr = etree.SubElement(arrs, "paramsArray")
     _v(arr, "name", name)
@@ -501,8 +553,6 @@ def _arrays(el, node, uids):
 
 def write_sbs(graph, path: Path, description: str = "", overwrite: bool = True) -> Path:
     """Write ``graph`` as an ``.sbs`` file at ``path`` (atomically)."""
-    from ..safe_files import write_atomic
-
     path = Path(path)
     write_atomic(path, export_sbs(graph, description).encode("utf-8"), overwrite=overwrite)
     return path

@@ -11,6 +11,8 @@ import bpy
 from bpy.props import BoolProperty, EnumProperty, IntProperty, StringProperty
 
 from ..blender import addon, parameters
+from ..blender.export_presets import export_maps
+from ..errors import BlenderMatchError
 
 
 class BLENDER_MATCH_OT_export_maps(bpy.types.Operator):
@@ -47,9 +49,6 @@ class BLENDER_MATCH_OT_export_maps(bpy.types.Operator):
         return {'RUNNING_MODAL'}
 
     def execute(self, context):
-        from ..blender.export_presets import export_maps
-        from ..blender.material_builder import ResultFolderError
-
         material = addon.active_material(context)
         record = parameters.stored_record(material) or {}
         result_dir = record.get("result_dir")
@@ -64,7 +63,7 @@ class BLENDER_MATCH_OT_export_maps(bpy.types.Operator):
         try:
             paths = export_maps(result_dir, out_dir, self.preset, size=self.size or None, bits=self.bits,
                                 file_format=self.file_format, name=self.name or None, overwrite=self.overwrite)
-        except (ResultFolderError, ValueError, OSError) as exc:
+        except (BlenderMatchError, OSError) as exc:
             self.report({'ERROR'}, str(exc))
             return {'CANCELLED'}
         self.report({'INFO'}, f"Exported {len(paths)} {self.preset} map(s) to {out_dir}: "

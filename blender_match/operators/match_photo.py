@@ -16,6 +16,7 @@ import bpy
 from bpy.props import BoolProperty, EnumProperty, FloatProperty, IntProperty, StringProperty
 
 from ..blender import addon, match_job
+from ..vocabulary import DEFAULT_QUALITY
 from ._job_runner import JobRunner
 
 _SKIP = {'SKIP_SAVE'}
@@ -36,7 +37,7 @@ class BLENDER_MATCH_OT_match_photo(JobRunner, bpy.types.Operator):
                           description="'AUTO' (automatic selection) or a library graph's name")
     size: IntProperty(name="Size", default=2048, min=16, max=8192, options=_SKIP,
                       description="Size of the maps written (a power of two)")
-    quality: EnumProperty(name="Quality", items=addon.QUALITY_ITEMS, default="balanced", options=_SKIP)
+    quality: EnumProperty(name="Quality", items=addon.QUALITY_ITEMS, default=DEFAULT_QUALITY, options=_SKIP)
     device: EnumProperty(name="Device", items=[addon.PREFERENCES_DEVICE, *addon.DEVICE_ITEMS], default="default",
                          options=_SKIP)
     seed: IntProperty(name="Seed", default=0, min=0, options=_SKIP, description="The graph's random seed")
@@ -59,30 +60,40 @@ class BLENDER_MATCH_OT_match_photo(JobRunner, bpy.types.Operator):
         return True
 
     def _options(self, context) -> dict:
-        """The operator's properties, the unset ones from the panel's settings."""
+        """The operator's properties, the unset ones from the panel's settings (when the scene
+        has them)."""
         settings = getattr(context.scene, "blender_match", None)
+        options = self._photo(settings)
+        options.update(self._fit_options(settings))
+        options["seed"], options["iterations"] = self.seed, self.iterations
+        return options
 
-        def given(name):
-            return settings is None or self.properties.is_property_set(name)
-
-        options = {}
+    def _photo(self, settings) -> dict:
+        """``{"image": datablock}`` or ``{"photo": path}``: the operator's image or file when
+        given, else the panel's photo."""
         if self.image:
-            options["image"] = bpy.data.images.get(self.image)
-            if options["image"] is None:
+            image = bpy.data.images.get(self.image)
+            if image is None:
                 raise match_job.JobError(f"no image named {self.image!r} in this file")
-        elif given("filepath"):
-            options["photo"] = self.filepath
-        elif settings.photo_source == 'IMAGE':
+            return {"image": image}
+        if settings is None or self.properties.is_property_set("filepath"):
+            return {"photo": self.filepath}
+        if settings.photo_source == 'IMAGE':
             if settings.photo_image is None:
                 raise match_job.JobError("no photo image chosen")
-            options["image"] = settings.photo_image
-        else:
-            options["photo"] = settings.photo_path
-        options["graph"] = self.graph if given("graph") else settings.graph
-        options["size"] = self.size if given("size") else addon.SIZES[settings.size]
-        for name in ("quality", "device", "pack", "tiling"):
-            options[name] = getattr(self if given(name) else settings, name)
-        options["seed"], options["iterations"] = self.seed, self.iterations
+            return {"image": settings.photo_image}
+        return {"photo": settings.photo_path}
+
+    def _fit_options(self, settings) -> dict:
+        """Graph, size, quality, device, packing and tiling: the operator's when set, else the
+        panel's (whose size is a "1K"/"2K"/"4K" choice)."""
+        names = ("graph", "size", "quality", "device", "pack", "tiling")
+        options = {name: getattr(self, name) for name in names}
+        if settings is None:
+            return options
+        for name in names:
+            if not self.properties.is_property_set(name):
+                options[name] = addon.SIZES[settings.size] if name == "size" else getattr(settings, name)
         return options
 
     def execute(self, context):

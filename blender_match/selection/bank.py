@@ -24,6 +24,9 @@ from pathlib import Path
 
 import torch
 
+from ..diffmat.render import render_maps
+from ..library import apply_params, library_entry, library_path, load_library_graph, sample_params
+from ..safe_files import write_atomic
 from .descriptor import DESCRIPTOR_KIND, DESCRIPTOR_SIZE, compact_descriptor, descriptor_distance, shared_vgg
 
 MODELS_DIR = Path(__file__).resolve().parents[1] / "library" / "models"
@@ -40,16 +43,12 @@ def graph_hash(name: str) -> str:
     """SHA-256 of a library graph's shipped .sbs file and its metadata (the translated parameter
     space, sampling ranges): a model built from either one changed is stale, so a translator
     change that moves the parameter vector retrains the graphs it touches."""
-    from ..library import library_path
-
     sbs = library_path(name)
     return hashlib.sha256(sbs.read_bytes() + sbs.with_suffix(".json").read_bytes()).hexdigest()
 
 
 def save_torch(obj, path: Path):
     """torch.save through an atomic write (a reader never sees half a file)."""
-    from ..safe_files import write_atomic
-
     buffer = io.BytesIO()
     torch.save(obj, buffer)
     write_atomic(Path(path), buffer.getvalue(), overwrite=True)
@@ -68,8 +67,6 @@ class SampleSpace:
     (``mask``) and the normalised vector of any sample ``k`` (optionally jittered)."""
 
     def __init__(self, name: str, graph=None):
-        from ..library import library_entry, load_library_graph
-
         self.name = name
         self.graph = graph if graph is not None else load_library_graph(name)
         self.default = self.graph.get_vector().clone()
@@ -83,8 +80,6 @@ class SampleSpace:
 
     def vector(self, k: int) -> torch.Tensor:
         """The normalised (P,) vector of ``sample_params(name, k)`` (other parameters: default)."""
-        from ..library import apply_params, sample_params
-
         self.graph.set_vector(self.default)
         apply_params(self.graph, sample_params(self.name, k))
         theta = self.graph.get_vector().clone()
@@ -101,8 +96,6 @@ class SampleSpace:
 
 def render_images(graph, thetas: torch.Tensor, seed: int, size: int) -> torch.Tensor:
     """Flash renders (N, 3, size, size) of normalised parameter vectors (N, P), graph seed ``seed``."""
-    from ..diffmat.render import render_maps
-
     with torch.no_grad():
         images = render_maps(graph(size=size, seed=seed, theta=thetas))
     if images.shape[0] != thetas.shape[0]:

@@ -12,7 +12,7 @@ multi-layer perceptron whose sigmoid output is the graph's normalised trainable 
   anything else.
 
 Training (``train_graph``) follows the paper: synthetic examples from the graph itself, a
-parameter L1 loss first, then a short phase adding the rendering (style) loss of eq. 4 with
+parameter L1 loss first (``fit_params``), then a short phase adding the rendering (style) loss of eq. 4 with
 lambda_g = 0.05. Rendering is the cost on a CPU (a few tenths of a second to seconds per
 example), so the examples are rendered once and reused for every epoch rather than drawn anew each
 iteration: samples 0..BANK_SIZE-1 are the bank's (graph seed 0: one pass builds both), the rest
@@ -40,9 +40,24 @@ import time
 import torch
 from torch import nn
 
-from .bank import (BANK_SEED, BANK_SIZE, SampleSpace, bank_is_current, describe, graph_hash, load_torch,
-                   models_dir, render_images, save_torch, write_bank)
-from .descriptor import DESCRIPTOR_DIM, DESCRIPTOR_KIND, DESCRIPTOR_SIZE
+from ..diffmat.descriptor import TextureDescriptor, style_loss
+from ..diffmat.render import render_maps
+from ..errors import Cancelled, OptionError
+from ..safe_files import write_atomic
+from .bank import (
+    BANK_SEED,
+    BANK_SIZE,
+    SampleSpace,
+    bank_is_current,
+    describe,
+    graph_hash,
+    load_torch,
+    models_dir,
+    render_images,
+    save_torch,
+    write_bank,
+)
+from .descriptor import DESCRIPTOR_DIM, DESCRIPTOR_KIND, DESCRIPTOR_SIZE, shared_vgg
 
 HIDDEN = 256
 LAYERS = 2
@@ -57,14 +72,15 @@ TRAIN_SEEDS = (1, 100_000)  # graph seeds of the training examples (benchmarks u
 PREDICTOR_SUFFIX, META_SUFFIX, CHECKPOINT_SUFFIX = ".predictor.pt", ".predictor.json", ".train.pt"
 
 
-class TrainingCancelled(Exception):
-    """``cancel()`` returned True; the checkpoint keeps what was done."""
-
-
 class ParamPredictor(nn.Module):
     """Compact descriptor (B, D) -> normalised parameters (B, P) in [0, 1]: standardised input,
     ``layers`` hidden ReLU layers of ``hidden`` units, a sigmoid; components outside ``mask``
     return ``default``."""
+
+    in_mean: torch.Tensor  # buffers (register_buffer), declared for the type checker
+    in_std: torch.Tensor
+    default: torch.Tensor
+    mask: torch.Tensor
 
     def __init__(self, in_dim: int, num_params: int, hidden: int = HIDDEN, layers: int = LAYERS):
         super().__init__()
@@ -116,8 +132,6 @@ def load_predictor(name: str, directory=None) -> ParamPredictor | None:
 
 
 def save_predictor(model: ParamPredictor, name: str, meta: dict, directory=None, dtype=torch.float16):
-    from ..safe_files import write_atomic
-
     weights, meta_path, _ = predictor_paths(name, directory)
     state = {k: (v.detach().to(dtype) if v.is_floating_point() else v.detach()).cpu().clone()
              for k, v in model.state_dict().items()}
@@ -155,7 +169,7 @@ def _generate(space, plan, data, checkpoint, device, progress, cancel, batch=8):
     done = len(data["seeds"])
     while done < len(plan):
         if cancel is not None and cancel():
-            raise TrainingCancelled()
+            raise Cancelled()
         t0 = time.perf_counter()
         group = plan[done:done + batch]
         thetas = torch.stack([_theta(space, space.name, k, jit) for k, _, jit in group])
@@ -181,7 +195,7 @@ def _generate(space, plan, data, checkpoint, device, progress, cancel, batch=8):
     return data
 
 
-def _fit_params(model, x, y, xv, yv, mask, epochs, progress, cancel, seed):
+def fit_params(model, x, y, xv, yv, mask, epochs, progress, cancel, seed):
     """Phase 1: parameter L1 loss only; returns the best-by-validation state and its error.
     The network starts at the training mean (last layer's bias its logit, weights shrunk): with
     a few hundred examples for ~100 parameters, most of which barely show in an image, the mean
@@ -197,7 +211,7 @@ def _fit_params(model, x, y, xv, yv, mask, epochs, progress, cancel, seed):
     best_err, best_state = math.inf, None
     for epoch in range(epochs):
         if cancel is not None and cancel():
-            raise TrainingCancelled()
+            raise Cancelled()
         model.train()
         order = torch.randperm(x.shape[0], generator=gen)
         for start in range(0, x.shape[0], 32):
@@ -226,17 +240,13 @@ def _val_error(model, xv, yv, mask) -> float:
 def _render_phase(model, graph, data, train_idx, mask, steps, device, progress, cancel, seed, batch=2):
     """Phase 2 (eq. 4): parameter L1 + LAMBDA_G x style loss of the predicted parameters'
     render against the example's, both at RENDER_SIZE px (Gram descriptor, as the fit's loss)."""
-    from ..diffmat.descriptor import TextureDescriptor, style_loss
-    from ..diffmat.render import render_maps
-    from .descriptor import shared_vgg
-
     gram = TextureDescriptor(scales=(RENDER_SIZE,), vgg=shared_vgg(device))
     gen = torch.Generator().manual_seed(seed + 1)
     optimizer = torch.optim.Adam(model.net.parameters(), lr=1e-4)
     model.to(device)
     for step in range(steps):
         if cancel is not None and cancel():
-            raise TrainingCancelled()
+            raise Cancelled()
         model.train()
         optimizer.zero_grad(set_to_none=True)
         picks = train_idx[torch.randint(len(train_idx), (batch,), generator=gen)]
@@ -264,7 +274,7 @@ def train_graph(name: str, samples: int = DEFAULT_SAMPLES, epochs: int = DEFAULT
     _, _, checkpoint = predictor_paths(name, directory)
     bank_size = min(bank_size, samples)
     if samples - bank_size < 8:
-        raise ValueError(f"train {name}: --samples must exceed the bank's {bank_size} samples by at least 8")
+        raise OptionError(f"train {name}: --samples must exceed the bank's {bank_size} samples by at least 8")
     started = time.perf_counter()
     space = SampleSpace(name)
     space.graph.to(device)
@@ -276,7 +286,8 @@ def train_graph(name: str, samples: int = DEFAULT_SAMPLES, epochs: int = DEFAULT
             data[key] = data[key][:samples]
     else:
         data = {"graph_sha256": digest, "config": config, "thetas": torch.zeros(0, P),
-                "descriptors": torch.zeros(0, DESCRIPTOR_DIM), "images": torch.zeros(0, 3, RENDER_SIZE, RENDER_SIZE).half(),
+                "descriptors": torch.zeros(0, DESCRIPTOR_DIM),
+                "images": torch.zeros(0, 3, RENDER_SIZE, RENDER_SIZE).half(),
                 "seeds": torch.zeros(0, dtype=torch.int64), "seconds": 0.0}
     plan = _plan(name, samples, bank_size)
     data = _generate(space, plan, data, checkpoint, device, progress, cancel)
@@ -296,7 +307,7 @@ def train_graph(name: str, samples: int = DEFAULT_SAMPLES, epochs: int = DEFAULT
     model.default.copy_(space.default)
     model.mask.copy_(space.mask)
     t1 = time.perf_counter()
-    err_fit = _fit_params(model, x[train_idx], y[train_idx], x[val_idx], y[val_idx], space.mask, epochs,
+    err_fit = fit_params(model, x[train_idx], y[train_idx], x[val_idx], y[val_idx], space.mask, epochs,
                           progress, cancel, seed)
     fit_seconds = time.perf_counter() - t1
     t2 = time.perf_counter()
@@ -308,7 +319,8 @@ def train_graph(name: str, samples: int = DEFAULT_SAMPLES, epochs: int = DEFAULT
         model.load_state_dict(before)
     render_seconds = time.perf_counter() - t2
     # the figure that counts is that of the weights as stored (float16)
-    model.load_state_dict({k: (v.half().float() if v.is_floating_point() else v) for k, v in model.state_dict().items()})
+    model.load_state_dict({k: (v.half().float() if v.is_floating_point() else v)
+                           for k, v in model.state_dict().items()})
     err = _val_error(model, x[val_idx], y[val_idx], space.mask)
     err_default = float(masked_l1(space.default.expand(n_val, -1), y[val_idx], space.mask))
     meta = {

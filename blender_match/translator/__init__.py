@@ -28,9 +28,17 @@ import os
 import time
 from dataclasses import dataclass
 
-from ..diffmat.errors import DiffMatError
+from ..errors import BlenderMatchError
+from . import dataflow
+from .assemble import assemble, finalize
+from .build import USAGES, Builder, xml_name
+from .codegen import generate
 from .errors import TranslatorError
+from .parse import load_package
+from .probe import probe
+from .report import make_report
 from .runtime import MODES, SbsGraph
+from .xml_safety import MAX_BYTES, read_document
 
 __all__ = ["TranslatorError", "Translation", "translate", "load_sbs_graph", "SbsGraph", "MODES"]
 
@@ -43,7 +51,6 @@ class Translation:
 
 
 def _pick_graph(pkg, graph_name, path):
-    from .build import USAGES
     if graph_name is not None:
         g = pkg.find_graph(graph_name)
         if g is None:
@@ -62,15 +69,6 @@ def _pick_graph(pkg, graph_name, path):
 def translate(path, graph_name: str | None = None, mode: str = "exposed_plus", *,
               max_bytes: int | None = None) -> Translation:
     """Translate one graph of the .sbs file at ``path``."""
-    from . import dataflow
-    from .assemble import assemble, finalize
-    from .build import Builder, xml_name
-    from .codegen import generate
-    from .parse import load_package
-    from .probe import probe
-    from .report import make_report
-    from .xml_safety import MAX_BYTES, read_document
-
     if mode not in MODES:
         raise TranslatorError(path, f"unknown mode {mode!r}; expected one of {list(MODES)}")
     start = time.perf_counter()
@@ -90,7 +88,7 @@ def translate(path, graph_name: str | None = None, mode: str = "exposed_plus", *
         raise
     except RecursionError:
         raise TranslatorError(path, "document nested too deeply") from None
-    except (DiffMatError, KeyError, IndexError, TypeError, AttributeError, ValueError, OverflowError,
+    except (BlenderMatchError, KeyError, IndexError, TypeError, AttributeError, ValueError, OverflowError,
             ZeroDivisionError, RuntimeError) as exc:
         raise TranslatorError(path, f"cannot translate ({type(exc).__name__}: {exc})") from None
     report = make_report(path=str(path), ir=ir, stats=builder.stats, pruned=pruned_counted,

@@ -26,7 +26,7 @@ import re
 
 # node (spec name) -> {normalised file identifier: spec parameter, or a tuple of spec parameters
 # taking the file value's components in order}
-PARAM_ALIASES: dict[str, dict[str, object]] = {
+PARAM_ALIASES: dict[str, dict[str, str | tuple[str, ...]]] = {
     # pattern generators: library identifiers (current and older library versions)
     "tile_generator": {
         "pattern_size": "size_xy", "size": "size_xy", "position_offset": "offset",

@@ -26,28 +26,33 @@ the parsed package (model.py) to the IR (ir.py).
 """
 from __future__ import annotations
 
+import math
 import os
 import re
 from collections import Counter
 
 from ..diffmat.functional import function_graph as fg_engine
 from ..diffmat.nodes import get_spec, has_spec
+from ..vocabulary import MATERIAL_OUTPUTS
 from . import aliases
 from . import function_graphs as fgs
-from .errors import TranslatorError
 from .dataflow import toposort
+from .errors import TranslatorError
 from .ir import Exposed, IRGraph, IRNode, Ref
 from .model import Graph, Node, Package, Param
 from .parse import load_package
 from .runtime import fit_components
-from .values import IMAGE_TYPES, TYPE_CODES, BadValue, Value
+from .type_codes import TYPE_CODES
+from .values import IMAGE_TYPES, BadValue, Value
+from .xml_safety import MAX_BYTES, read_document
 
 SAFE = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
 MAX_DEPTH = 16
 MAX_IR_NODES = 20000
 MAX_WARNINGS = 200
 BASE_PARAMS = {"outputsize", "format", "pixelsize", "pixelratio", "tiling", "quality", "randomseed"}
-USAGES = {"basecolor": 4, "normal": 4, "roughness": 1, "metallic": 1, "height": 1, "ambientocclusion": 1}
+# the material outputs a graph may name, and the channel count the engine produces for each
+USAGES = {output.name: output.channels for output in MATERIAL_OUTPUTS}
 PRIMARY_SLOTS = ("destination", "input1", "input", "input_1", "source", "background", "mask", "input_2")
 UNCONNECTED = (0.0, 0.0, 0.0, 0.0)
 # nodes whose "any" inputs need not have the output's channel count
@@ -125,7 +130,7 @@ def _split_path(path: str) -> tuple[str, str | None]:
 
 
 class Stats:
-    def __init__(self):
+    def __init__(self) -> None:
         self.total = self.translated = self.passthrough = self.inlined = self.adapters = 0
         self.unsupported: Counter = Counter()
         self.unsupported_functions: Counter = Counter()
@@ -161,6 +166,17 @@ class Builder:
         parent = self._parent_size(graph)
         size = self._graph_size(graph, parent)
         ir.size_log2 = size
+        env, inputs = self._root_inputs(graph, ir)
+        outs = self.translate_graph(pkg, graph, inputs=inputs, env=env, depth=0, parent=parent,
+                                    parent_format=0, seed=0, stack=())
+        self._root_outputs(graph, outs, ir)
+        if not ir.outputs:
+            raise TranslatorError(self.path, f"graph {graph.identifier[:60]!r} has no connected output")
+        return ir
+
+    def _root_inputs(self, graph: Graph, ir: IRGraph) -> tuple[dict[str, object], dict[str, Ref | None]]:
+        """The root graph's inputs: its value parameters exposed on ``ir`` (or, in mode "all",
+        their defaults), by identifier, and its image inputs (unconnected)."""
         env: dict[str, object] = {}
         used: set[str] = set()
         inputs: dict[str, Ref | None] = {}
@@ -168,9 +184,10 @@ class Builder:
             if pi.type in IMAGE_TYPES:
                 inputs[pi.identifier.lower()] = None
                 continue
-            kind, n = TYPE_CODES.get(pi.type, (None, 0))
-            if kind is None:
+            entry = TYPE_CODES.get(pi.type) if pi.type is not None else None
+            if entry is None:
                 continue
+            kind, n = entry
             default = _default_value(pi.default, kind, n)
             if self.mode == "all":
                 env[pi.identifier] = default
@@ -188,8 +205,11 @@ class Builder:
             ir.exposed.append(Exposed(name=name, kind=kind, default=pyval, min=lo, max=hi))
             self.runtime[name] = pyval
             env[pi.identifier] = fgs.getter(kind, n, name)
-        outs = self.translate_graph(pkg, graph, inputs=inputs, env=env, depth=0, parent=parent,
-                                    parent_format=0, seed=0, stack=())
+        return env, inputs
+
+    def _root_outputs(self, graph: Graph, outs: dict, ir: IRGraph):
+        """Name ``ir``'s material outputs from the root graph's output usages (the first connected
+        output as base colour when none is recognised)."""
         for go in graph.outputs:
             usages = [u.lower() for u in go.usages] or []
             for usage in usages:
@@ -209,9 +229,6 @@ class Builder:
                     self.stats.warn("no material usage on the graph outputs; the first output is used as basecolor")
                     ir.outputs["basecolor"] = self.adapt(ref, 4)
                     break
-        if not ir.outputs:
-            raise TranslatorError(self.path, f"graph {graph.identifier[:60]!r} has no connected output")
-        return ir
 
     # ---- sizes --------------------------------------------------------------------------------
     @staticmethod
@@ -254,6 +271,7 @@ class Builder:
         return name if name != "exposed" else self.new_name(base + "_")
 
     def add(self, node: IRNode) -> IRNode:
+        assert self.ir is not None  # set by build() before any node is made
         if len(self.ir.nodes) >= MAX_IR_NODES:
             raise TranslatorError(self.path, f"the translated graph exceeds {MAX_IR_NODES} nodes")
         self.ir.nodes[node.name] = node
@@ -276,6 +294,7 @@ class Builder:
             graph = {"nodes": {"0": {"function": "get_float2", "inputs": {}, "data": "$pos"},
                                "1": {"function": fn, "inputs": {"pos": "0"}, "data": {"input": 0, "filtering": 1}}},
                      "root": "1"}
+            assert self.ir is not None  # set by build() before any node is made
             src = self.ir.nodes.get(ref.node)
             node = self.add(IRNode(self.new_name("to_color" if want == 4 else "to_gray"), "pixelprocessor",
                                    {"perpixel": fg_engine.dumps(graph), "colorswitch": want == 4},
@@ -310,19 +329,7 @@ class Builder:
 
         for uid in order:
             node = graph.nodes[uid]
-            conns = []  # (identifier, Ref | None, value | None, source uid)
-            for c in node.connections:
-                src = graph.nodes[c.source]
-                out = c.source_output
-                known = [o for o, _ in src.outputs]
-                if out is None or out not in known:
-                    if out is not None and known:
-                        self.stats.warn(f"{where}: node {uid[:20]} reads unknown output {out[:20]}; using the first")
-                    out = known[0] if known else ""
-                ref, value = refs.get((c.source, out)), values.get((c.source, out))
-                if ref is None and value is not None and not c.identifier.startswith("#"):
-                    ref = self._value_image((uid, c.source, out), value, sizes.get(c.source, (gsize, 0))[0])
-                conns.append((c.identifier, ref, value, c.source))
+            conns = self._connections(graph, node, refs, values, sizes, gsize, where)
             primary = self._primary(conns, sizes)
             size, fmt = self._node_size(node, gsize, gformat, primary)
             sizes[uid] = (size, fmt)
@@ -330,49 +337,77 @@ class Builder:
             node_env = {**system, **env, **local}
 
             if node.impl == "output":
+                assert node.ref is not None  # parse sets ``ref`` on every input / output bridge
                 outmap[node.ref] = next((r for _, r, _, _ in conns if r is not None), None)
                 continue
             if node.impl == "input":
-                pi = pis.get(node.ref)
-                if pi is None:
-                    self.stats.warn(f"{where}: input node {uid[:20]} refers to an unknown parameter")
-                    self._set_outputs(node, refs, self.uniform(None, GRAY, "graph input", "input", size))
-                    continue
-                if pi.type in IMAGE_TYPES or pi.type is None:
-                    ref = inputs.get(pi.identifier.lower())
-                    if ref is None:
-                        want = IMAGE_TYPES.get(pi.type) or channels_of(node.outputs[0][1] if node.outputs else None)
-                        self.stats.unconnected_inputs.append(safe_name(pi.identifier, "input"))
-                        ref = self.uniform(want, GRAY, "graph input", "input", size)
-                    self._set_outputs(node, refs, ref)
-                else:
-                    value = env.get(pi.identifier)
-                    for o, _ in node.outputs or [("", None)]:
-                        values[(uid, o)] = value
+                assert node.ref is not None  # parse sets ``ref`` on every input / output bridge
+                self._input_node(node, pis.get(node.ref), inputs, env, refs, values, size, where)
                 continue
 
             self.stats.total += 1
             if node.impl == "filter":
-                fname = node.name.lower()
-                if fname == "passthrough":
-                    self.stats.translated += 1
-                    ref = next((r for _, r, _, _ in conns if r is not None), None)
-                    self._set_outputs(node, refs, ref if ref is not None else self.uniform(None, GRAY, size=size))
-                elif fname == "valueprocessor":
-                    self.stats.translated += 1
-                    value = self._value_function(node, node_env, where)
-                    for o, _ in node.outputs or [("", None)]:
-                        values[(uid, o)] = value
-                elif has_spec(fname):
-                    self._make(node, get_spec(fname), conns, node_env, refs, size, fmt, seed, where)
-                else:
-                    self._passthrough(node, fname, conns, refs, size)
+                self._filter_node(node, conns, node_env, refs, values, size, fmt, seed, where)
             elif node.impl == "instance":
                 self._instance(pkg, graph, node, conns, node_env, refs, values, size, fmt, seed, depth,
                                stack, where)
             else:
                 self._passthrough(node, node.name or "unknown", conns, refs, size)
         return outmap
+
+    def _connections(self, graph: Graph, node: Node, refs, values, sizes, gsize, where: str) -> list[tuple]:
+        """``node``'s connections as (identifier, Ref | None, value | None, source uid); a value
+        read by an image slot becomes a uniform image."""
+        conns = []
+        for c in node.connections:
+            src = graph.nodes[c.source]
+            out = c.source_output
+            known = [o for o, _ in src.outputs]
+            if out is None or out not in known:
+                if out is not None and known:
+                    self.stats.warn(f"{where}: node {node.uid[:20]} reads unknown output {out[:20]}; using the first")
+                out = known[0] if known else ""
+            ref, value = refs.get((c.source, out)), values.get((c.source, out))
+            if ref is None and value is not None and not c.identifier.startswith("#"):
+                ref = self._value_image((node.uid, c.source, out), value, sizes.get(c.source, (gsize, 0))[0])
+            conns.append((c.identifier, ref, value, c.source))
+        return conns
+
+    def _input_node(self, node: Node, pi, inputs, env, refs, values, size, where: str):
+        """A graph input node: the image the instance connects (or a uniform one), or the value of
+        parameter ``pi``."""
+        if pi is None:
+            self.stats.warn(f"{where}: input node {node.uid[:20]} refers to an unknown parameter")
+            self._set_outputs(node, refs, self.uniform(None, GRAY, "graph input", "input", size))
+            return
+        if pi.type in IMAGE_TYPES or pi.type is None:
+            ref = inputs.get(pi.identifier.lower())
+            if ref is None:
+                want = IMAGE_TYPES.get(pi.type) or channels_of(node.outputs[0][1] if node.outputs else None)
+                self.stats.unconnected_inputs.append(safe_name(pi.identifier, "input"))
+                ref = self.uniform(want, GRAY, "graph input", "input", size)
+            self._set_outputs(node, refs, ref)
+            return
+        value = env.get(pi.identifier)
+        for o, _ in node.outputs or [("", None)]:
+            values[(node.uid, o)] = value
+
+    def _filter_node(self, node: Node, conns, node_env, refs, values, size, fmt, seed, where: str):
+        """An atomic node: passthrough, value processor, a registered node, or a passthrough stand-in."""
+        fname = node.name.lower()
+        if fname == "passthrough":
+            self.stats.translated += 1
+            ref = next((r for _, r, _, _ in conns if r is not None), None)
+            self._set_outputs(node, refs, ref if ref is not None else self.uniform(None, GRAY, size=size))
+        elif fname == "valueprocessor":
+            self.stats.translated += 1
+            value = self._value_function(node, node_env, where)
+            for o, _ in node.outputs or [("", None)]:
+                values[(node.uid, o)] = value
+        elif has_spec(fname):
+            self._make(node, get_spec(fname), conns, node_env, refs, size, fmt, seed, where)
+        else:
+            self._passthrough(node, fname, conns, refs, size)
 
     def _primary(self, conns, sizes):
         image = [(ident.lower(), src) for ident, ref, _, src in conns if ref is not None]
@@ -412,6 +447,7 @@ class Builder:
                     made[want] = Ref(ir.name, "output", src.channels or want)
                 else:
                     made[want] = self.adapt(src, want)
+                    assert self.ir is not None  # set by build() before any node is made
                     self.ir.nodes[made[want].node].status = "passthrough"
                     self.ir.nodes[made[want].node].origin = name
             refs[(node.uid, o)] = made[want]
@@ -479,10 +515,29 @@ class Builder:
         ir = IRNode(self.new_name(spec.name), spec.name, origin=xml_name(origin or spec.name, "library_node"),
                     size_log2=size, format=fmt)
         label = f"{where}: {spec.name} {node.uid[:20]}"
+        own_types = {channels_of(ct) for _, ct in node.outputs}
+        own = own_types.pop() if len(own_types) == 1 and len(spec.outputs) == 1 else None
+        self._make_inputs(ir, spec, conns, own, size, label)
+        node_seed = seed
+        if "randomseed" in node.params:
+            node_seed = self._seed(node.params["randomseed"], seed, label)
+        self._make_params(ir, node, spec, env, label, node_seed)
+        if ("colorswitch" in spec.param_index and "colorswitch" not in ir.params and own is not None
+                and spec.param("colorswitch").kind == "bool"):
+            ir.params["colorswitch"] = own == 4  # the file omits it: follow the output's recorded type
+        for array, cells in node.arrays.items():
+            self._array(ir, spec, array, cells, label)
+        ir.seed = node_seed
+        self.add(ir)
+        self.stats.translated += 1
+        self._make_outputs(ir, node, spec, refs, label)
+        return ir
+
+    def _make_inputs(self, ir: IRNode, spec, conns, own: int | None, size, label: str):
+        """Connect ``ir``'s input slots (by alias), adapted to the slots' channels (a variant node
+        follows its own output's recorded type); an unconnected required slot gets a uniform image."""
         slots = {s.name: s for s in spec.inputs}
         image_conns = [(i, r) for i, r, _, _ in conns if r is not None]
-        own = {channels_of(ct) for _, ct in node.outputs}
-        own = own.pop() if len(own) == 1 and len(spec.outputs) == 1 else None
         variant = own is not None and spec.kind != "generator" and spec.name not in NOT_VARIANT
         for ident, ref in image_conns:
             slot = aliases.resolve_input(spec, ident) or ident.lower().replace(":", "_")
@@ -498,10 +553,10 @@ class Builder:
                 want = {"gray": 1, "color": 4}.get(s.channels, own or 4)
                 ir.inputs[s.name] = self.uniform(want, UNCONNECTED, origin="unconnected input", status="input",
                                                  size=size)
-        node_seed = seed
+
+    def _make_params(self, ir: IRNode, node: Node, spec, env, label: str, node_seed: int):
+        """Convert ``node``'s parameters to ``ir``'s (exact identifiers first, then aliases)."""
         pixel = spec.name == "pixelprocessor"
-        if "randomseed" in node.params:
-            node_seed = self._seed(node.params["randomseed"], seed, label)
         aliased = []
         for pname, p in node.params.items():
             if pname == "randomseed" or (pname in BASE_PARAMS and pname not in spec.param_index):
@@ -520,14 +575,9 @@ class Builder:
                 if target not in ir.params and target not in ir.bindings:
                     self._param(ir, spec.param(target), p, env, label, pixel, node_seed,
                                 component=component, ident=pname)
-        if ("colorswitch" in spec.param_index and "colorswitch" not in ir.params and own is not None
-                and spec.param("colorswitch").kind == "bool"):
-            ir.params["colorswitch"] = own == 4  # the file omits it: follow the output's recorded type
-        for array, cells in node.arrays.items():
-            self._array(ir, spec, array, cells, label)
-        ir.seed = node_seed
-        self.add(ir)
-        self.stats.translated += 1
+
+    def _make_outputs(self, ir: IRNode, node: Node, spec, refs, label: str):
+        """Map ``node``'s outputs to ``ir``'s (by bridging identifier, else by position)."""
         outputs = list(spec.outputs)
         for i, (o, ct) in enumerate(node.outputs or [("", None)]):
             name = None
@@ -543,7 +593,6 @@ class Builder:
                 name = outputs[0]
                 self.stats.warn(f"{label}: output {safe_name(ident or '', 'output')!r} unknown; using {name!r}")
             refs[(node.uid, o)] = Ref(ir.name, name, channels_of(ct))
-        return ir
 
     def _seed(self, p: Param, base: int, label: str) -> int:
         try:
@@ -581,6 +630,7 @@ class Builder:
         perpixel = pixel and sp.name == "perpixel"
         if perpixel:  # the pixel processor provides $pos, $size, ... itself
             env = {k: v for k, v in env.items() if not k.startswith("$")}
+        assert p.dynamic is not None  # parse sets either an error, a constant or a function graph
         graph = self._compose(p.dynamic, env, where, pixel=perpixel)
         if graph is None:
             return
@@ -666,7 +716,6 @@ class Builder:
             raise TranslatorError(self.path, f"missing dependency file {os.path.basename(filename)[:80]!r}")
         if len(self.packages) > 64:
             raise TranslatorError(self.path, "too many dependency files")
-        from .xml_safety import MAX_BYTES, read_document
         root = read_document(target, self.max_bytes or MAX_BYTES)
         sub = load_package(target, root)
         self.packages[target] = sub
@@ -686,9 +735,10 @@ class Builder:
             if pi.type in IMAGE_TYPES:
                 inputs[low] = image_conns.get(low)
                 continue
-            kind, n = TYPE_CODES.get(pi.type, (None, 0))
-            if kind is None:
+            entry = TYPE_CODES.get(pi.type) if pi.type is not None else None
+            if entry is None:
                 continue
+            kind, n = entry
             p = node.params.get(low)
             value: object = _default_value(pi.default, kind, n)
             if p is not None and p.constant is not None:
@@ -714,7 +764,7 @@ def _default_value(value: Value | None, kind: str, n: int) -> Value:
     """A paraminput's default as a Value of (kind, n); zero / false / "" when missing or mistyped."""
     if value is not None and value.kind == kind:
         if kind in ("float", "int"):
-            return Value(kind, n, tuple(fit_components(list(value.value), n)))
+            return Value(kind, n, tuple(fit_components(value.numbers(), n)))
         return value
     if value is not None and kind in ("float", "int") and value.kind in ("float", "int", "bool"):
         nums = value.numbers()
@@ -742,7 +792,6 @@ def _adjust(value, spec_name: str, param: str, ident: str, component: int | None
 def convert(sp, value):
     """A file value (number, list, bool or str) as a value of the spec parameter ``sp``;
     BadValue when it does not fit (the caller keeps the default)."""
-    import math
     if sp.kind == "string":
         if isinstance(value, str) and (value == "" or SAFE.match(value)):
             return value

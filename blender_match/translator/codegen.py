@@ -13,6 +13,8 @@ import math
 import re
 
 from ..diffmat.functional import function_graph as fg_engine
+from ..diffmat.nodes import has_spec
+from ..errors import BlenderMatchError
 from .ir import IRGraph
 
 _SAFE = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
@@ -21,7 +23,7 @@ _ID = re.compile(r"^[0-9]{1,9}$")
 _SPEC = re.compile(r"^[a-z0-9_][a-z0-9_\-]*$")
 
 
-class CodegenError(RuntimeError):
+class CodegenError(BlenderMatchError):
     """The IR holds something that must not reach a program (a bug, not a bad file)."""
 
 
@@ -71,7 +73,6 @@ def lit(value) -> str:
 
 
 def _spec_name(name: str) -> str:
-    from ..diffmat.nodes import has_spec
     if not (_SPEC.match(name) and has_spec(name)):
         raise CodegenError(f"not a registered node: {name[:40]!r}")
     return name
@@ -117,7 +118,8 @@ def generate(ir: IRGraph, order: list[str], source_name: str = "graph") -> str:
         params = lit(dict(node.params)) if node.params else "{}"
         inputs = {slot: f"{r.node}:{r.output}" for slot, r in node.inputs.items()}
         seed = f", seed={int(node.seed)}" if node.seed else ""
-        call = f"    graph.add({lit(_ident(name))}, Node({repr(_spec_name(node.spec))}, {params}{seed}, widen_ranges=True)"
+        spec = repr(_spec_name(node.spec))
+        call = f"    graph.add({lit(_ident(name))}, Node({spec}, {params}{seed}, widen_ranges=True)"
         call += f", {lit(inputs)})" if inputs else ")"
         lines.append(call)
         for p, graph in node.bindings.items():

@@ -3,10 +3,12 @@ from __future__ import annotations
 
 import os
 
+from ..errors import BlenderMatchError
+
 MAX_MESSAGE = 300
 
 
-class TranslatorError(ValueError):
+class TranslatorError(BlenderMatchError):
     """A .sbs document the translator cannot (or will not) translate: one line naming the file and
     the problem."""
 

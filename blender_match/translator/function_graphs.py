@@ -16,6 +16,7 @@ import torch
 
 from ..diffmat.errors import DiffMatError
 from ..diffmat.functional import function_graph as fg_engine
+from ..errors import BlenderMatchError
 from .runtime import fit_components
 from .values import BadValue, Value, decode_container, get_v
 
@@ -23,7 +24,7 @@ MAX_FUNCTION_NODES = 2000
 _UID = re.compile(r"^-?[0-9]{1,24}$")
 
 
-class FunctionError(ValueError):
+class FunctionError(BlenderMatchError):
     """A function graph the translator cannot use (unsupported function, malformed)."""
 
 
@@ -57,7 +58,7 @@ def parse_dynamic(el) -> dict:
             if src is None or not _UID.match(src):
                 raise FunctionError(f"function {fn}: bad connection")
             inputs[port] = src
-        node = {"function": fn, "inputs": inputs}
+        node: dict = {"function": fn, "inputs": inputs}
         data = _parse_data(fn, pn)
         if data is not None:
             node["data"] = data
@@ -168,7 +169,8 @@ def substitute(graph: dict, env: dict) -> dict:
                 sub = constant_graph(fn, sub["nodes"][sub["root"]].get("data", 0))
             prefix = f"{nid}_"
             for sid, snode in sub["nodes"].items():
-                nodes[prefix + sid] = {**snode, "inputs": {p: prefix + s for p, s in (snode.get("inputs") or {}).items()}}
+                inputs = snode.get("inputs") or {}
+                nodes[prefix + sid] = {**snode, "inputs": {p: prefix + s for p, s in inputs.items()}}
             remap[nid] = prefix + sub["root"]
         else:
             nodes[nid] = dict(node)

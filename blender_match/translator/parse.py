@@ -73,7 +73,7 @@ def _param(el, warnings: list[str], where: str) -> Param | None:
 
 
 def _params(container, warnings, where) -> dict[str, Param]:
-    out = {}
+    out: dict[str, Param] = {}
     if container is None:
         return out
     for el in container.findall("parameter"):
@@ -93,6 +93,39 @@ def _connections(el) -> list[Connection]:
     return out
 
 
+def _outputs(el) -> list[tuple[str, int | None]]:
+    """A node's outputs: (uid, comptype or None)."""
+    outputs: list[tuple[str, int | None]] = []
+    for out in el.findall("compOutputs/compOutput"):
+        ouid = child_v(out, "uid")
+        if ouid is None:
+            continue
+        text = child_v(out, "comptype")
+        try:
+            ct = to_int(text) if text is not None else None
+        except BadValue:
+            ct = None
+        outputs.append((ouid.strip(), ct))
+    return outputs
+
+
+def _param_arrays(impl, warnings, uid: str) -> dict[str, list[dict]]:
+    """A filter's parameter arrays (gradient keys, curve points): name -> cells of constants."""
+    arrays = {}
+    for arr in impl.findall("paramsArrays/paramsArray"):
+        name = (child_v(arr, "name") or "").lower()
+        cells = []
+        for cell in arr.findall("paramsArrayCells/paramsArrayCell"):
+            values = {}
+            for pname, p in _params(cell.find("parameters"), warnings, uid).items():
+                if p.constant is not None:
+                    values[pname] = p.constant
+            cells.append(values)
+        if name:
+            arrays[name] = cells
+    return arrays
+
+
 def _node(el, path, warnings) -> Node:
     uid = child_v(el, "uid")
     if uid is None or not uid.strip():
@@ -102,32 +135,13 @@ def _node(el, path, warnings) -> Node:
     impl = next((c for c in impl_el if isinstance(c.tag, str)), None) if impl_el is not None else None
     node = Node(uid=uid, impl="unknown")
     node.connections = _connections(el)
-    for out in el.findall("compOutputs/compOutput"):
-        ouid = child_v(out, "uid")
-        if ouid is None:
-            continue
-        ct = child_v(out, "comptype")
-        try:
-            ct = to_int(ct) if ct is not None else None
-        except BadValue:
-            ct = None
-        node.outputs.append((ouid.strip(), ct))
+    node.outputs = _outputs(el)
     if impl is None:
         return node
     if impl.tag == "compFilter":
         node.impl, node.name = "filter", (child_v(impl, "filter") or "")
         node.params = _params(impl.find("parameters"), warnings, uid)
-        for arr in impl.findall("paramsArrays/paramsArray"):
-            name = (child_v(arr, "name") or "").lower()
-            cells = []
-            for cell in arr.findall("paramsArrayCells/paramsArrayCell"):
-                values = {}
-                for pname, p in _params(cell.find("parameters"), warnings, uid).items():
-                    if p.constant is not None:
-                        values[pname] = p.constant
-                cells.append(values)
-            if name:
-                node.arrays[name] = cells
+        node.arrays = _param_arrays(impl, warnings, uid)
     elif impl.tag == "compInstance":
         node.impl, node.name = "instance", (child_v(impl, "path") or "")
         node.params = _params(impl.find("parameters"), warnings, uid)

@@ -11,6 +11,7 @@ import torch
 
 from ..diffmat.errors import DiffMatError
 from ..diffmat.nodes import EvalContext, Node, get_spec
+from .build import USAGES
 from .ir import Ref
 
 PROBE_SIZE = 16
@@ -63,7 +64,6 @@ def probe(builder, order: list[str]) -> list[str]:
             run(name)
         new_order.append(name)
     # outputs: the channel count their usage needs
-    from .build import USAGES
     for usage, r in list(ir.outputs.items()):
         actual = values[r.node][get_spec(ir.nodes[r.node].spec).outputs.index(r.output)].shape[1]
         if actual != USAGES[usage]:

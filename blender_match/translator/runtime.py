@@ -7,10 +7,10 @@ How exposed parameters live at runtime (the choice this module implements):
   normalised in [0, 1] between a range (the widget's min/max, widened to hold the default) like
   node parameters, and are optimisable; int, bool and string ones are fixed values.
 - A node parameter whose .sbs value is a function graph of exposed parameters is *bound*:
-  ``graph.bind(node, param, function_graph)``. Before the node runs, a forward pre-hook evaluates
-  the function graph with torch (``diffmat.functional.function_graph``) from the current exposed
-  values and feeds the result to the node as its parameter value, so gradients flow from the node
-  back to the exposed parameters. A bound continuous parameter is never optimisable itself.
+  ``graph.bind(node, param, function_graph)``, which compiles the function graph once. Before the
+  node runs, a forward pre-hook evaluates it with torch (``diffmat.functional.function_graph``)
+  from the current exposed values and feeds the result to the node as its parameter value, so
+  gradients flow from the node back to the exposed parameters. A bound continuous parameter is never optimisable itself.
 - The optimisable vector (``get_vector``/``set_vector``/``forward(theta=...)``/``param_names``) is the
   node parameters MaterialGraph already handles followed by the exposed float parameters, named
   ``exposed.NAME``. ``set_mode`` picks what is free: ``"exposed"`` (exposed parameters only),
@@ -50,7 +50,7 @@ class ExposedParameters(ParameterSet):
     """The graph-level (exposed) parameters: float ones normalised in ``theta`` (ranged by the
     widget's min/max, widened to hold the default), others fixed values by name."""
 
-    def __init__(self):
+    def __init__(self) -> None:
         super().__init__(EXPOSED)
         self.kinds: dict[str, str] = {}
 
@@ -77,10 +77,13 @@ class ExposedParameters(ParameterSet):
 class SbsGraph(MaterialGraph):
     """A MaterialGraph with exposed (graph-level) parameters and bound node parameters."""
 
+    report: dict  # the translation report, set by ``translator.translate``
+
     def __init__(self, name: str = "graph"):
         super().__init__(name)
         self.exposed = ExposedParameters()
         self.bindings: dict[str, dict[str, dict]] = {}
+        self._compiled: dict[str, dict[str, fgraph.CompiledGraph]] = {}  # bindings, compiled once
         self.mode = "exposed_plus"
         self._batch: dict | None = None
         self._hooks: dict[str, object] = {}
@@ -94,26 +97,27 @@ class SbsGraph(MaterialGraph):
     def expose(self, name: str, default, *, kind: str = "float", min: float = 0.0, max: float = 1.0):
         """Declare an exposed parameter (``kind`` float, int, bool or string)."""
         self.exposed.add(name, default, kind=kind, min=min, max=max)
-        self._cache.clear()
+        self._changed()
 
     def bind(self, node: str, param: str, function_graph: dict):
         """Drive ``node.param`` by ``function_graph`` of the exposed parameters."""
         if node not in self.nodes:
             raise DiffMatError(f"graph {self.name}: bind to missing node {node!r}")
-        module = self.nodes[node]
+        module = self.node(node)
         if param not in module.spec.param_index:
             raise DiffMatError(f"graph {self.name}: node {node!r} has no parameter {param!r}")
-        fgraph.validate(function_graph)
-        unknown = fgraph.variables_of(function_graph) - set(self.exposed.kinds)
+        compiled = fgraph.compile_graph(function_graph)
+        unknown = compiled.variables - set(self.exposed.kinds)
         if unknown:
             raise DiffMatError(f"graph {self.name}: {node}.{param} reads unknown variable(s) {sorted(unknown)}")
         self.bindings.setdefault(node, {})[param] = function_graph
+        self._compiled.setdefault(node, {})[param] = compiled
         if param in module.theta:
             module.theta[param].requires_grad_(False)
         if node not in self._hooks:
             self._hooks[node] = module.register_forward_pre_hook(
                 lambda mod, args, kwargs, _n=node: self._pre_hook(_n, mod, args, kwargs), with_kwargs=True)
-        self._cache.clear()
+        self._changed()
 
     def set_mode(self, mode: str):
         """Choose the free parameters: "exposed", "exposed_plus" or "all" (see the module doc)."""
@@ -123,7 +127,7 @@ class SbsGraph(MaterialGraph):
         for n, ps in self.parameter_sets().items():
             for p, t in ps.theta.items():
                 t.requires_grad_(self.may_train(n, p) and (n == EXPOSED or mode != "exposed"))
-        self._cache.clear()
+        self._changed()
 
     # ---- bound parameters ------------------------------------------------------------------
     def _pre_hook(self, name, module, args, kwargs):
@@ -132,9 +136,9 @@ class SbsGraph(MaterialGraph):
         override = dict(kwargs.get("override") or {})
         device = next((t.device for t in module.theta.values()), torch.device("cpu"))
         dtype = next((t.dtype for t in module.theta.values()), torch.float32)
-        for param, graph in self.bindings[name].items():
+        for param, evaluate in self._compiled[name].items():
             p = module.spec.param(param)
-            value = fgraph.evaluate(graph, variables, device=device, dtype=dtype)
+            value = evaluate(variables, device=device, dtype=dtype)
             if param in module.theta:
                 if isinstance(value, str):
                     raise DiffMatError(f"{name}.{param}: the bound function returns a string")
@@ -147,14 +151,13 @@ class SbsGraph(MaterialGraph):
         kwargs["override"] = override
         return args, kwargs
 
-    def _exposed_live(self) -> bool:
-        return self._batch is not None or any(t.requires_grad for t in self.exposed.theta.values())
-
-    def _static(self, order, overrides):
-        if self.bindings and self._exposed_live():  # constant bindings leave a node cacheable
-            overrides = {**overrides, **{n: {} for n, b in self.bindings.items()
-                                         if any(fgraph.variables_of(g) for g in b.values())}}
-        return super()._static(order, overrides)
+    def _dynamic(self) -> set[str]:
+        """Also the nodes bound to trainable exposed parameters (a constant binding, or one of
+        frozen parameters, leaves its node cacheable)."""
+        dynamic = super()._dynamic()
+        if any(t.requires_grad for t in self.exposed.theta.values()):
+            dynamic.update(n for n, b in self._compiled.items() if any(c.variables for c in b.values()))
+        return dynamic
 
     # ---- the parameter vector ----------------------------------------------------------------
     def parameter_sets(self):
@@ -163,8 +166,8 @@ class SbsGraph(MaterialGraph):
     def may_train(self, owner: str, param: str) -> bool:
         return super().may_train(owner, param) and param not in self.bindings.get(owner, {})
 
-    def _split(self, theta):
-        out = super()._split(theta)
+    def _split(self, theta, plan):
+        out = super()._split(theta, plan)
         self._batch = out.pop(EXPOSED, None)
         return out
 

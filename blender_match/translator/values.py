@@ -6,10 +6,12 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+from ..errors import BlenderMatchError
+
 MAX_STRING = 4096
 
 
-class BadValue(ValueError):
+class BadValue(BlenderMatchError):
     """A value that cannot be decoded; the caller falls back to a default and reports it."""
 
 
@@ -24,6 +26,7 @@ class Value:
 
     def numbers(self) -> list:
         if self.kind in ("float", "int"):
+            assert isinstance(self.value, tuple)  # numbers are always decoded to a tuple
             return list(self.value)
         if self.kind == "bool":
             return [1 if self.value else 0]
@@ -46,11 +49,6 @@ CONSTANT_TAGS = {
     "constantValueBool": ("bool", 1), "constantValueString": ("string", 1),
 }
 
-# paraminput / function type code -> (kind, components)
-TYPE_CODES = {
-    4: ("bool", 1), 16: ("int", 1), 32: ("int", 2), 64: ("int", 3), 128: ("int", 4),
-    256: ("float", 1), 512: ("float", 2), 1024: ("float", 3), 2048: ("float", 4), 16384: ("string", 1),
-}
 IMAGE_TYPES = {1: 4, 2: 1, 3: None}  # type code -> channels (None = either)
 
 

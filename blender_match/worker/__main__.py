@@ -9,9 +9,10 @@ Protocol lines go to the process's original stdout only; before running anything
 file descriptor 1 and ``sys.stdout`` at stderr, so stray prints and warnings from any library
 (Python or C) land in stderr, which the client keeps as a log.
 
-Errors: missing packages -> kind ``dependency``; errors the user can fix (ValueError, OSError, out
-of memory) -> ``user``; anything else -> ``crash`` with a one-line summary and the traceback on
-stderr.
+Outcomes: ``errors.Cancelled`` (or an interrupt after a cancel line) -> a cancelled line; missing
+packages -> an error of kind ``dependency``; errors the user can fix (``errors.BlenderMatchError``,
+``OSError``, out of memory) -> ``user``; anything else is a bug -> ``crash`` with a one-line
+summary and the traceback on stderr.
 """
 from __future__ import annotations
 
@@ -27,13 +28,15 @@ import traceback
 from pathlib import Path
 
 from ..allocator import keep_freed_memory
+from ..errors import BlenderMatchError, Cancelled
+from ..version import __version__
 from . import protocol
 from .backend_setup import WORKER_IMPORTS
 
 PROGRESS_INTERVAL = 0.1  # seconds: at most ~10 progress lines a second
 
 
-class DependencyError(Exception):
+class DependencyError(BlenderMatchError):
     """The worker's Python lacks a package the job needs."""
 
 
@@ -45,7 +48,7 @@ class Channel:
         self._lock = threading.Lock()
         self._last_progress = 0.0
         self._last_stage = None
-        self._held = None
+        self._held: dict | None = None
         self.broken = False
 
     def send(self, message: dict) -> None:
@@ -137,7 +140,7 @@ def check_dependencies() -> None:
 def probe() -> dict:
     """What the add-on's preferences show: this Python, torch and the devices it can use."""
     check_dependencies()
-    import torch
+    import torch  # here, not at the top: a missing torch must be reported, not crash the import
 
     devices = [{"id": "cpu", "name": platform.processor() or platform.machine() or "CPU"}]
     if torch.cuda.is_available():
@@ -146,7 +149,7 @@ def probe() -> dict:
     mps = getattr(torch.backends, "mps", None)
     if mps is not None and mps.is_available():
         devices.append({"id": "mps", "name": "Apple Metal"})
-    packages = {}
+    packages: dict[str, str | None] = {}
     for name, module in WORKER_IMPORTS.items():
         try:
             imported = importlib.import_module(module)
@@ -155,9 +158,7 @@ def probe() -> dict:
             except importlib.metadata.PackageNotFoundError:
                 packages[name] = getattr(imported, "__version__", None)
         except Exception as exc:  # installed but broken: show it, the job will fail clearly
-            packages[name] = f"unusable: {protocol.one_line(exc, 200)}"
-    from .. import __version__
-
+            packages[name] = f"unusable: {protocol.one_line(str(exc), 200)}"
     return {
         "python": sys.executable,
         "python_version": platform.python_version(),
@@ -178,13 +179,13 @@ def run_request(request: dict, channel: Channel, cancel: threading.Event) -> dic
     if kind == "probe":
         return probe()
     check_dependencies()
-    from .. import pipeline
+    from .. import pipeline  # here, not at the top: torch may be missing (a dependency error, above)
 
     if kind == "match":
         try:
             options = pipeline.MatchOptions(**request.get("options") or {})
         except TypeError as exc:
-            raise ValueError(f"match options: {exc}") from None
+            raise protocol.ProtocolError(f"match options: {exc}") from None
         return pipeline.match_photo(Path(request["photo"]), Path(request["out_dir"]), options,
                                     progress=channel.progress, cancel=cancel.is_set)
     if kind == "render":
@@ -192,13 +193,7 @@ def run_request(request: dict, channel: Channel, cancel: threading.Event) -> dic
                                       device=request.get("device") or "auto",
                                       overwrite=bool(request.get("overwrite")),
                                       progress=channel.progress, cancel=cancel.is_set)
-    raise ValueError(f"not a job request: {kind}")
-
-
-def _is_cancelled(exc: BaseException) -> bool:
-    pipeline = sys.modules.get(f"{__package__.rpartition('.')[0]}.pipeline")
-    cancelled = getattr(pipeline, "MatchCancelled", None)
-    return cancelled is not None and isinstance(exc, cancelled)
+    raise protocol.ProtocolError(f"not a job request: {kind}")
 
 
 def classify(exc: BaseException) -> tuple[str, str]:
@@ -214,9 +209,9 @@ def classify(exc: BaseException) -> tuple[str, str]:
         return "crash", f"{type(exc).__name__}: {exc}"
     if isinstance(exc, MemoryError) or type(exc).__name__ == "OutOfMemoryError":
         return "user", f"out of memory: {exc} (use a smaller size or the CPU)"
-    if isinstance(exc, (ValueError, OSError)):
+    if isinstance(exc, (BlenderMatchError, OSError)):
         return "user", str(exc) or type(exc).__name__
-    return "crash", f"{type(exc).__name__}: {exc}"
+    return "crash", f"internal error (a bug; the worker's log has its traceback): {type(exc).__name__}: {exc}"
 
 
 def main() -> int:
@@ -237,7 +232,7 @@ def main() -> int:
     try:
         report = run_request(request, channel, cancel)
     except BaseException as exc:  # noqa: BLE001 - every outcome must reach the parent as one line
-        if _is_cancelled(exc) or (isinstance(exc, KeyboardInterrupt) and cancel.is_set()):
+        if isinstance(exc, Cancelled) or (isinstance(exc, KeyboardInterrupt) and cancel.is_set()):
             channel.send(protocol.cancelled_event())
             return 0
         kind, message = classify(exc)

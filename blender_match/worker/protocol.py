@@ -28,6 +28,8 @@ import json
 import math
 from typing import Any
 
+from ..errors import BlenderMatchError
+
 PROTOCOL_VERSION = 1
 MAX_LINE_BYTES = 8 << 20
 
@@ -38,7 +40,7 @@ TERMINAL_TYPES = ("result", "error", "cancelled")
 ERROR_KINDS = ("user", "dependency", "crash")
 
 
-class ProtocolError(ValueError):
+class ProtocolError(BlenderMatchError):
     """A line that is not a valid protocol message."""
 
 

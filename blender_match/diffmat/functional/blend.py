@@ -40,7 +40,7 @@ from __future__ import annotations
 import torch
 
 from ..errors import DiffMatError
-from .common import COLOR, GRAY, _step, broadcast_shape, check_choice, check_image, param2d, param4d
+from .common import COLOR, GRAY, broadcast_shape, check_choice, check_image, param2d, param4d, step
 
 __all__ = ["blend"]
 
@@ -74,7 +74,7 @@ def _target(mode: int, fg: torch.Tensor, bg: torch.Tensor) -> torch.Tensor:
         # hi - lo = 1 - 2 (1 - F)(1 - B) - 2 F B = 2 (F + B) - 4 F B - 1, sharing F B
         fb = fg * bg
         diff = torch.addcmul((fg + bg) * 2.0 - 1.0, fb, fb.new_full((), -4.0))
-        return torch.addcmul(fb * 2.0, _step(bg - 0.5), diff)
+        return torch.addcmul(fb * 2.0, step(bg - 0.5), diff)
     if mode == 10:
         return 1 - (1 - fg) * (1 - bg)
     if mode == 11:
@@ -133,7 +133,8 @@ def blend(source: torch.Tensor, destination: torch.Tensor, opacity: torch.Tensor
     if opacity is not None:
         mask = check_image(opacity, "blend.opacity", (GRAY,))
         if mask.shape[-2:] != bg.shape[-2:]:
-            raise DiffMatError(f"blend.opacity: mask is {tuple(mask.shape[-2:])} but destination is {tuple(bg.shape[-2:])}")
+            raise DiffMatError(f"blend.opacity: mask is {tuple(mask.shape[-2:])} "
+                               f"but destination is {tuple(bg.shape[-2:])}")
         weight = weight * mask
 
     mode = blendingmode
@@ -160,14 +161,15 @@ def blend(source: torch.Tensor, destination: torch.Tensor, opacity: torch.Tensor
 
 def _blend_color_nograd(mode: int, fg: torch.Tensor, bg: torch.Tensor, weight: torch.Tensor) -> torch.Tensor:
     """Colour blend with alpha blending 0 (source alpha) without autograd: the same arithmetic as
-    ``blend``, written into one preallocated RGBA output and clamped in place."""
+    ``blend``, written into one preallocated RGBA output and clamped in place. What it saves:
+    docs/engine.md, "No-grad twins"."""
     with torch.no_grad():
         f_rgb, f_a = fg[:, :3], fg[:, 3:]
         b_rgb, b_a = bg[:, :3], bg[:, 3:]
         if mode == 9:
             fb = f_rgb * b_rgb
             diff = (f_rgb + b_rgb).mul_(2.0).sub_(1.0).addcmul_(fb, fb.new_full((), -4.0))
-            t = fb.mul_(2.0).addcmul_(_step(b_rgb - 0.5), diff)
+            t = fb.mul_(2.0).addcmul_(step(b_rgb - 0.5), diff)
             del diff
         elif mode == 10:
             t = (1 - f_rgb).mul_(1 - b_rgb).neg_().add_(1.0)

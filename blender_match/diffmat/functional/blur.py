@@ -133,7 +133,8 @@ def sharpen(input1: torch.Tensor, *, intensity=1.0) -> torch.Tensor:
         # one circular pad, then the four neighbours as strided views of it (no roll copies)
         p = F.pad(x, (s, s, s, s), mode="circular")
         if not torch.is_grad_enabled() or not (x.requires_grad or k.requires_grad):
-            with torch.no_grad():   # the same arithmetic on one in-place buffer
+            # no-grad twin: the same arithmetic on one in-place buffer (docs/engine.md, "No-grad twins")
+            with torch.no_grad():
                 neigh = torch.add(p[..., s:s + h, :w], p[..., s:s + h, 2 * s:])
                 neigh.add_(torch.add(p[..., :h, s:s + w], p[..., 2 * s:, s:s + w]))
                 del p

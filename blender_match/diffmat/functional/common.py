@@ -10,7 +10,7 @@ Conventions (see docs/engine.md):
 from __future__ import annotations
 
 import math
-from typing import Sequence
+from typing import Collection, Sequence
 
 import torch
 import torch.nn.functional as F
@@ -41,11 +41,19 @@ def check_size(size: int, name: str = "size") -> int:
     return size
 
 
-def check_choice(value, choices: Sequence, name: str):
+def check_choice(value, choices: Collection, name: str):
     """Raise DiffMatError unless ``value`` is one of ``choices``."""
     if value not in choices:
         raise DiffMatError(f"{name}: unknown value {value!r}; expected one of {list(choices)}")
     return value
+
+
+def check_bool(value, name: str) -> bool:
+    """``value`` as a bool; raise DiffMatError unless it is 0, 1, True or False (a library node's
+    boolean parameter, named ``name`` in the message)."""
+    if value in (0, 1, True, False):
+        return bool(value)
+    raise DiffMatError(f"{name}: expected a boolean, got {value!r}")
 
 
 def broadcast_shape(*shapes: Sequence[int]) -> tuple[int, ...]:
@@ -85,6 +93,13 @@ def param2d(value, like: torch.Tensor | None = None) -> torch.Tensor:
     return param4d(value, like).flatten(1)
 
 
+def expand_batch(out: torch.Tensor, *params) -> torch.Tensor:
+    """Expand ``out`` to the batch size of (B, k) parameters that do not otherwise enter the
+    computation, so a batch of B parameter sets always gives B outputs."""
+    b = max([out.shape[0]] + [param4d(p).shape[0] for p in params])
+    return out.expand(b, -1, -1, -1) if b != out.shape[0] else out
+
+
 def to_color(x: torch.Tensor) -> torch.Tensor:
     """Grayscale (N,1,H,W) to RGBA (alpha 1); colour passes through."""
     if x.shape[1] == COLOR:
@@ -102,6 +117,15 @@ def to_gray(x: torch.Tensor) -> torch.Tensor:
 def match_channels(x: torch.Tensor, channels: int) -> torch.Tensor:
     """Convert ``x`` to ``channels`` (1 or 4) channels."""
     return to_color(x) if channels == COLOR else to_gray(x)
+
+
+def image_grid(like: torch.Tensor) -> tuple[torch.Tensor, torch.Tensor]:
+    """Pixel-centre coordinates (u, v) in [0, 1) of ``like``'s H x W pixels, each (1, 1, H, W)."""
+    h, w = like.shape[-2:]
+    cu = (torch.arange(w, device=like.device, dtype=like.dtype) + 0.5) / w
+    cv = (torch.arange(h, device=like.device, dtype=like.dtype) + 0.5) / h
+    v, u = torch.meshgrid(cv, cu, indexing="ij")
+    return u[None, None], v[None, None]
 
 
 def pixel_grid(size: int, device=None, dtype=torch.float32) -> tuple[torch.Tensor, torch.Tensor]:
@@ -137,7 +161,7 @@ def sample_wrap(img: torch.Tensor, u: torch.Tensor, v: torch.Tensor, mode: str =
     # g = (u w + 0.5) / (w + 1) * 2 - 1, one multiply-add.
     grid = torch.stack([u, v], dim=-1)
     grid = grid - torch.floor(grid.detach())
-    scale, shift = _grid_affine(w, h, img.device, img.dtype)
+    scale, shift = grid_affine(w, h, img.device, img.dtype)
     grid = torch.addcmul(shift, grid, scale)
     if padded.shape[0] != b:
         padded = padded.expand(b, -1, -1, -1)
@@ -149,7 +173,10 @@ def sample_wrap(img: torch.Tensor, u: torch.Tensor, v: torch.Tensor, mode: str =
 _AFFINE_CACHE: dict = {}
 
 
-def _grid_affine(w: int, h: int, device, dtype):
+def grid_affine(w: int, h: int, device, dtype) -> tuple[torch.Tensor, torch.Tensor]:
+    """(scale, shift), each (2,), mapping wrapped texture coordinates in [0, 1) of a w x h image
+    to ``grid_sample``'s [-1, 1] on that image padded by one texel each side (align_corners):
+    g = u * scale + shift. Cached per size, device and dtype."""
     key = (w, h, str(device), dtype)
     hit = _AFFINE_CACHE.get(key)
     if hit is None:
@@ -243,7 +270,7 @@ def gradient_wrap(img: torch.Tensor) -> tuple[torch.Tensor, torch.Tensor]:
     return dx, dy
 
 
-def _step(x: torch.Tensor) -> torch.Tensor:
+def step(x: torch.Tensor) -> torch.Tensor:
     """Float mask 1 where x >= 0, 0 where x < 0, built from arithmetic (on CPU, comparisons,
     ``where`` and their backward passes are several times slower than a multiply). No gradient."""
     with torch.no_grad():

@@ -27,12 +27,18 @@ node's id, so it is deterministic; the draw is a constant factor, so ``rand(a)``
 
 Every malformed graph (unknown function, unknown port, dangling reference, cycle, wrong data) is a
 DiffMatError raised by :func:`validate`, which :func:`evaluate` calls first.
+
+A graph evaluated many times (a pixel processor's, a bound parameter's at every forward pass) is
+compiled once (:func:`compile_graph`, or :func:`compiled` for JSON text): validated, ordered, and
+turned into one closure per node with its function, data and ports resolved, so an evaluation
+only runs the closures.
 """
 from __future__ import annotations
 
 import json
 import math
 import zlib
+from dataclasses import dataclass
 from functools import lru_cache
 from typing import Any, Callable, Mapping, Sequence
 
@@ -42,7 +48,7 @@ from ..errors import DiffMatError
 from .common import broadcast_shape, sample_wrap
 
 # re-exported by diffmat.functional under these prefixed names
-__all__ = ["evaluate_function_graph", "validate_function_graph", "load_function_graph"]
+__all__ = ["evaluate_function_graph", "validate_function_graph", "load_function_graph", "compile_function_graph"]
 
 MAX_NODES = 20000
 
@@ -66,9 +72,9 @@ for _n in ("neg", "not", "abs", "floor", "ceil", "cos", "sin", "tan", "sqrt", "l
     FUNCTIONS[_n] = _UNARY
 for _n in ("vector2", "vector3", "vector4", "ivector2", "ivector3", "ivector4"):
     FUNCTIONS[_n] = ("componentsin", "componentslast")
-for _n in (1, 2, 3, 4):
-    FUNCTIONS[f"swizzle{_n}"] = ("vector",)
-    FUNCTIONS[f"iswizzle{_n}"] = ("vector",)
+for _k in (1, 2, 3, 4):
+    FUNCTIONS[f"swizzle{_k}"] = ("vector",)
+    FUNCTIONS[f"iswizzle{_k}"] = ("vector",)
 FUNCTIONS.update({
     "lerp": ("a", "b", "x"),
     "ifelse": ("condition", "ifpath", "elsepath"),
@@ -97,6 +103,13 @@ def function_kind(name: str) -> str | None:
     if name in ("const_string", "get_string"):
         return "string"
     return None
+
+
+def _own_kind(name: str) -> str:
+    """The kind of a function that produces one on its own (constants, getters, vectors...)."""
+    kind = function_kind(name)
+    assert kind is not None, name
+    return kind
 
 
 def _err(msg: str) -> DiffMatError:
@@ -148,21 +161,30 @@ def validate(graph: Any) -> dict:
     if not isinstance(root, str) or root not in nodes:
         raise _err(f"root {root!r} is not a node")
     for nid, node in nodes.items():
-        if not isinstance(nid, str) or not isinstance(node, dict):
-            raise _err(f"node {nid!r}: expected a dict")
-        fn = node.get("function")
-        if fn not in FUNCTIONS:
-            raise _err(f"node {nid}: unknown function {fn!r}")
-        inputs = node.get("inputs", {}) or {}
-        if not isinstance(inputs, dict):
-            raise _err(f"node {nid} ({fn}): inputs must be a dict")
-        for port, src in inputs.items():
-            if port not in FUNCTIONS[fn]:
-                raise _err(f"node {nid} ({fn}): unknown input port {port!r}")
-            if not isinstance(src, str) or src not in nodes:
-                raise _err(f"node {nid} ({fn}): input {port!r} refers to missing node {src!r}")
-        _check_data(nid, fn, node.get("data"))
-    # cycle check (iterative DFS from every node)
+        _check_node(nid, node, nodes)
+    _check_acyclic(nodes)
+    return graph
+
+
+def _check_node(nid, node, nodes: dict):
+    if not isinstance(nid, str) or not isinstance(node, dict):
+        raise _err(f"node {nid!r}: expected a dict")
+    fn = node.get("function")
+    if fn not in FUNCTIONS:
+        raise _err(f"node {nid}: unknown function {fn!r}")
+    inputs = node.get("inputs", {}) or {}
+    if not isinstance(inputs, dict):
+        raise _err(f"node {nid} ({fn}): inputs must be a dict")
+    for port, src in inputs.items():
+        if port not in FUNCTIONS[fn]:
+            raise _err(f"node {nid} ({fn}): unknown input port {port!r}")
+        if not isinstance(src, str) or src not in nodes:
+            raise _err(f"node {nid} ({fn}): input {port!r} refers to missing node {src!r}")
+    _check_data(nid, fn, node.get("data"))
+
+
+def _check_acyclic(nodes: dict):
+    """DiffMatError on a cycle (iterative depth-first search from every node)."""
     state: dict[str, int] = {}
     for start in nodes:
         if start in state:
@@ -180,7 +202,6 @@ def validate(graph: Any) -> dict:
             elif nxt not in state:
                 state[nxt] = 1
                 stack.append((nxt, iter((nodes[nxt].get("inputs") or {}).values())))
-    return graph
 
 
 def variables_of(graph: dict) -> set[str]:
@@ -286,6 +307,70 @@ def _seed_for(seed: int, nid: str) -> int:
     return (zlib.crc32(nid.encode("utf-8")) * 1000003 + int(seed)) & 0x7FFFFFFF
 
 
+# ---- compilation: one closure per node, built once per graph -----------------------------------
+@dataclass
+class _Env:
+    """What one evaluation shares: the variables (``set`` writes them), sampled images, seed,
+    device and dtype."""
+
+    variables: dict[str, Any]
+    images: Sequence
+    seed: int
+    device: Any
+    dtype: torch.dtype
+
+    def zeros(self, k: int) -> torch.Tensor:
+        return torch.zeros(k, device=self.device, dtype=self.dtype)
+
+
+_Inputs = Mapping[str, _V]             # a node's connected inputs by port
+_Op = Callable[[_Env, _Inputs], _V]
+
+
+class CompiledGraph:
+    """A function graph (validated) compiled to one closure per node in evaluation order, so an
+    evaluation runs them without re-validating, re-sorting or dispatching on function names.
+    ``variables`` are the names its ``get_*`` nodes read."""
+
+    def __init__(self, graph: dict):
+        validate(graph)
+        nodes = graph["nodes"]
+        order = _order(graph)
+        self.variables = {nodes[n].get("data") for n in order if nodes[n]["function"].startswith("get_")}
+        self._root = graph["root"]
+        self._steps = [(nid, nodes[nid]["function"], tuple((nodes[nid].get("inputs") or {}).items()),
+                        _compile_node(nid, nodes[nid])) for nid in order]
+
+    def __call__(self, variables: Mapping[str, Any] | None = None, *, images: Sequence = (), seed: int = 0,
+                 device=None, dtype: torch.dtype = torch.float32, kind: bool = False):
+        """Evaluate; the arguments and the result are those of :func:`evaluate`."""
+        env = _Env(dict(variables or {}), images, seed, device, dtype)
+        if device is None:
+            env.device = next((v.device for v in env.variables.values() if isinstance(v, torch.Tensor)),
+                              torch.device("cpu"))
+        vals: dict[str, _V] = {}
+        for nid, fn, inputs, op in self._steps:
+            try:
+                vals[nid] = op(env, {port: vals[src] for port, src in inputs})
+            except DiffMatError:
+                raise
+            except (RuntimeError, IndexError, TypeError, ValueError) as exc:
+                raise _err(f"node {nid} ({fn}): {exc}") from None
+        out = vals[self._root]
+        return (out.t, out.kind) if kind else out.t
+
+
+def compile_graph(graph: dict) -> CompiledGraph:
+    """Validate ``graph`` and compile it (see :class:`CompiledGraph`)."""
+    return CompiledGraph(graph)
+
+
+@lru_cache(maxsize=256)
+def compiled(text: str) -> CompiledGraph:
+    """The compiled function graph of JSON text (cached by text, like :func:`loads`)."""
+    return CompiledGraph(loads(text))
+
+
 def evaluate(graph: dict, variables: Mapping[str, Any] | None = None, *, images: Sequence = (),
              seed: int = 0, device=None, dtype: torch.dtype = torch.float32, kind: bool = False):
     """Evaluate ``graph`` (validated first) and return the root's value.
@@ -294,30 +379,9 @@ def evaluate(graph: dict, variables: Mapping[str, Any] | None = None, *, images:
     components; leading dimensions broadcast). ``images`` are the NCHW images the samplers read.
     Returns a tensor of shape (..., k) (or a str for string results); with ``kind`` True, returns
     (value, kind) where kind is float, int, bool or string. An unset variable is a DiffMatError.
+    A graph evaluated repeatedly is better compiled once (:func:`compile_graph`, :func:`compiled`).
     """
-    validate(graph)
-    variables = dict(variables or {})
-    nodes = graph["nodes"]
-    if device is None:
-        device = next((v.device for v in variables.values() if isinstance(v, torch.Tensor)), torch.device("cpu"))
-    vals: dict[str, _V] = {}
-
-    def arg(nid: str, port: str, node: dict) -> _V | None:
-        src = (node.get("inputs") or {}).get(port)
-        return vals[src] if src is not None else None
-
-    for nid in _order(graph):
-        node = nodes[nid]
-        fn = node["function"]
-        data = node.get("data")
-        try:
-            vals[nid] = _apply(fn, data, node, nid, arg, variables, images, seed, device, dtype)
-        except DiffMatError:
-            raise
-        except (RuntimeError, IndexError, TypeError, ValueError) as exc:
-            raise _err(f"node {nid} ({fn}): {exc}") from None
-    out = vals[graph["root"]]
-    return (out.t, out.kind) if kind else out.t
+    return CompiledGraph(graph)(variables, images=images, seed=seed, device=device, dtype=dtype, kind=kind)
 
 
 def _num(v: _V | None, what: str) -> torch.Tensor:
@@ -328,113 +392,193 @@ def _num(v: _V | None, what: str) -> torch.Tensor:
     return v.t
 
 
-def _apply(fn, data, node, nid, arg, variables, images, seed, device, dtype) -> _V:
-    def zeros(k):
-        return torch.zeros(k, device=device, dtype=dtype)
+def _compile_node(nid: str, node: dict) -> _Op:
+    fn, data = node["function"], node.get("data")
+    where = f"node {nid} ({fn})"
+    for prefixes, make in _COMPILERS:
+        if fn.startswith(prefixes):
+            return make(nid, fn, data, where)
+    if FUNCTIONS[fn] == _UNARY:
+        return _compile_unary(nid, fn, node, where)
+    return _compile_binary(fn, where)
 
-    if fn.startswith("const_"):
-        k = function_kind(fn)
-        if fn == "const_string":
-            return _V("" if data is None else data, "string")
-        if fn == "const_bool":
-            return _V(torch.tensor([float(bool(data))], device=device, dtype=dtype), "bool")
-        n = int(fn[-1])
+
+def _compile_const(nid: str, fn: str, data, where: str) -> _Op:
+    kind = _own_kind(fn)
+    if fn == "const_string":
+        text = "" if data is None else data
+        return lambda env, ins: _V(text, "string")
+    if fn == "const_bool":
+        flag = float(bool(data))
+        return lambda env, ins: _V(torch.tensor([flag], device=env.device, dtype=env.dtype), "bool")
+    n = int(fn[-1])
+
+    def const(env: _Env, ins: _Inputs) -> _V:
         if data is None:
-            return _V(zeros(n), k)
-        t = _as_tensor(data, device, dtype).reshape(-1)
+            return _V(env.zeros(n), kind)
+        t = _as_tensor(data, env.device, env.dtype).reshape(-1)
         if t.numel() == 1 and n > 1:
             t = t.expand(n)
-        return _V(t[:n].clone() if t.numel() >= n else torch.cat([t, zeros(n - t.numel())]), k)
-    if fn.startswith("get_"):
-        if data not in variables:
-            raise _err(f"node {nid} ({fn}): variable {data!r} is not set")
-        v = variables[data]
-        k = function_kind(fn)
+        return _V(t[:n].clone() if t.numel() >= n else torch.cat([t, env.zeros(n - t.numel())]), kind)
+    return const
+
+
+def _fit_components(t: torch.Tensor, n: int, what: str) -> torch.Tensor:
+    if t.shape[-1] == n:
+        return t
+    if t.shape[-1] == 1:
+        return t.expand(*t.shape[:-1], n)
+    if t.shape[-1] > n:
+        return t[..., :n]
+    raise _err(f"{what} has {t.shape[-1]} component(s), expected {n}")
+
+
+def _compile_get(nid: str, fn: str, data, where: str) -> _Op:
+    kind = _own_kind(fn)
+    n = 1 if fn in ("get_bool", "get_string") else int(fn[-1])
+
+    def get(env: _Env, ins: _Inputs) -> _V:
+        if data not in env.variables:
+            raise _err(f"{where}: variable {data!r} is not set")
+        v = env.variables[data]
         if fn == "get_string":
             return _V(v if isinstance(v, str) else str(v), "string")
         if isinstance(v, str):
-            raise _err(f"node {nid} ({fn}): variable {data!r} holds a string")
-        t = _as_tensor(v, device, dtype)
-        n = 1 if fn == "get_bool" else int(fn[-1])
-        if t.shape[-1] != n:
-            if t.shape[-1] == 1:
-                t = t.expand(*t.shape[:-1], n)
-            elif t.shape[-1] > n:
-                t = t[..., :n]
-            else:
-                raise _err(f"node {nid} ({fn}): variable {data!r} has {t.shape[-1]} component(s), expected {n}")
-        return _V(t, k)
-    if fn == "set":
-        v = arg(nid, "value", node)
+            raise _err(f"{where}: variable {data!r} holds a string")
+        return _V(_fit_components(_as_tensor(v, env.device, env.dtype), n, f"{where}: variable {data!r}"), kind)
+    return get
+
+
+def _compile_pass_on(nid: str, fn: str, data, where: str) -> _Op:
+    """``set`` (stores its ``value`` input in variable ``data``) and ``sequence``: both return
+    their input (``value``, ``seqlast``)."""
+    port, missing = ("value", "input") if fn == "set" else ("seqlast", "seqlast")
+
+    def pass_on(env: _Env, ins: _Inputs) -> _V:
+        v = ins.get(port)
         if v is None:
-            raise _err(f"node {nid} (set): input not connected")
-        variables[data] = v.t
+            raise _err(f"node {nid} ({fn}): {missing} not connected")
+        if fn == "set":
+            env.variables[data] = v.t
         return v
-    if fn == "sequence":
-        v = arg(nid, "seqlast", node)
-        if v is None:
-            raise _err(f"node {nid} (sequence): seqlast not connected")
-        return v
-    if fn in ("samplelum", "samplecol"):
-        pos = _num(arg(nid, "pos", node), f"node {nid} ({fn})")
-        d = data or {}
-        out = _sample(images, d.get("input", 0), pos, d.get("filtering", 0), fn == "samplelum", dtype, device)
-        return _V(out, "float")
-    if fn.startswith(("vector", "ivector")):
-        a = _num(arg(nid, "componentsin", node), f"node {nid} ({fn})")
-        b = _num(arg(nid, "componentslast", node), f"node {nid} ({fn})")
-        out = _cat([a, b])
-        n = int(fn[-1])
+    return pass_on
+
+
+def _compile_sampler(nid: str, fn: str, data, where: str) -> _Op:
+    d = data or {}
+    index, filtering, lum = d.get("input", 0), d.get("filtering", 0), fn == "samplelum"
+
+    def sample(env: _Env, ins: _Inputs) -> _V:
+        pos = _num(ins.get("pos"), where)
+        return _V(_sample(env.images, index, pos, filtering, lum, env.dtype, env.device), "float")
+    return sample
+
+
+def _compile_vector(nid: str, fn: str, data, where: str) -> _Op:
+    n, kind = int(fn[-1]), _own_kind(fn)
+
+    def vector(env: _Env, ins: _Inputs) -> _V:
+        out = _cat([_num(ins.get("componentsin"), where), _num(ins.get("componentslast"), where)])
         if out.shape[-1] != n:
-            raise _err(f"node {nid} ({fn}): components add up to {out.shape[-1]}, expected {n}")
-        return _V(out, function_kind(fn))
-    if fn.startswith(("swizzle", "iswizzle")):
-        v = _num(arg(nid, "vector", node), f"node {nid} ({fn})")
-        if max(data) >= v.shape[-1]:
-            raise _err(f"node {nid} ({fn}): component {max(data)} of a {v.shape[-1]}-vector")
-        return _V(v[..., list(data)], function_kind(fn))
-    if fn == "ifelse":
-        c = _num(arg(nid, "condition", node), f"node {nid} (ifelse)")
-        a, b = arg(nid, "ifpath", node), arg(nid, "elsepath", node)
+            raise _err(f"{where}: components add up to {out.shape[-1]}, expected {n}")
+        return _V(out, kind)
+    return vector
+
+
+def _compile_swizzle(nid: str, fn: str, data, where: str) -> _Op:
+    kind, index, top = _own_kind(fn), list(data), max(data)
+
+    def swizzle(env: _Env, ins: _Inputs) -> _V:
+        v = _num(ins.get("vector"), where)
+        if top >= v.shape[-1]:
+            raise _err(f"{where}: component {top} of a {v.shape[-1]}-vector")
+        return _V(v[..., index], kind)
+    return swizzle
+
+
+def _compile_ifelse(nid: str, fn: str, data, where: str) -> _Op:
+    def ifelse(env: _Env, ins: _Inputs) -> _V:
+        c = _num(ins.get("condition"), f"node {nid} (ifelse)")
+        a, b = ins.get("ifpath"), ins.get("elsepath")
         if a is None or b is None:
             raise _err(f"node {nid} (ifelse): a path is not connected")
         if a.kind == "string" or b.kind == "string":
             return a if bool(c.reshape(-1)[0] > 0.5) else b
-        cond = c[..., :1] > 0.5
-        return _V(torch.where(cond, a.t, b.t), a.kind)
-    if fn == "lerp":
-        a, b, x = (_num(arg(nid, p, node), f"node {nid} (lerp)") for p in ("a", "b", "x"))
+        return _V(torch.where(c[..., :1] > 0.5, a.t, b.t), a.kind)
+    return ifelse
+
+
+def _compile_lerp(nid: str, fn: str, data, where: str) -> _Op:
+    def lerp(env: _Env, ins: _Inputs) -> _V:
+        a, b, x = (_num(ins.get(p), f"node {nid} (lerp)") for p in ("a", "b", "x"))
         return _V(a + x * (b - a), "float")
-    if fn == "cartesian":
-        th = _num(arg(nid, "theta", node), f"node {nid} (cartesian)")
-        rho = _num(arg(nid, "rho", node), f"node {nid} (cartesian)")
+    return lerp
+
+
+def _compile_cartesian(nid: str, fn: str, data, where: str) -> _Op:
+    def cartesian(env: _Env, ins: _Inputs) -> _V:
+        th = _num(ins.get("theta"), f"node {nid} (cartesian)")
+        rho = _num(ins.get("rho"), f"node {nid} (cartesian)")
         return _V(_cat([rho * torch.cos(th), rho * torch.sin(th)]), "float")
-    if FUNCTIONS[fn] == _UNARY:
-        v = next((arg(nid, p, node) for p in _UNARY if arg(nid, p, node) is not None), None)
-        if fn == "rand":
-            a = _num(v, f"node {nid} (rand)") if v is not None else torch.ones(1, device=device, dtype=dtype)
-            g = torch.Generator().manual_seed(_seed_for(seed, nid))
-            u = torch.rand(a.shape[-1], generator=g, dtype=torch.float64).to(device=device, dtype=dtype)
-            return _V(a * u, "float")
+    return cartesian
+
+
+def _compile_unary(nid: str, fn: str, node: dict, where: str) -> _Op:
+    port = next((p for p in _UNARY if p in (node.get("inputs") or {})), None)
+    if fn == "rand":
+        return _compile_rand(nid, port)
+    kind = function_kind(fn)
+
+    def unary(env: _Env, ins: _Inputs) -> _V:
+        v = ins.get(port) if port is not None else None
         if v is None:
-            raise _err(f"node {nid} ({fn}): input not connected")
+            raise _err(f"{where}: input not connected")
         if fn == "passthrough":
             return v
-        a = _num(v, f"node {nid} ({fn})")
-        return _V(_UNARY_OPS[fn](a), function_kind(fn) or v.kind)
-    # binary
-    va, vb = arg(nid, "a", node), arg(nid, "b", node)
-    if fn == "atan2" and va is not None and vb is None:
-        return _V(_atan2_unary(_num(va, f"node {nid} (atan2)")), "float")
-    if va is None or vb is None:
-        raise _err(f"node {nid} ({fn}): input {'a' if va is None else 'b'} not connected")
-    if fn in ("eq", "noteq") and (va.kind == "string" or vb.kind == "string"):
-        same = va.t == vb.t if va.kind == vb.kind == "string" else False
-        return _V(torch.tensor([float(same == (fn == "eq"))], device=device, dtype=dtype), "bool")
-    a, b = _num(va, f"node {nid} ({fn})"), _num(vb, f"node {nid} ({fn})")
-    integer = va.kind == "int" and vb.kind == "int"
-    out = _binary(fn, a, b, integer)
-    return _V(out, function_kind(fn) or ("int" if integer else va.kind if va.kind == vb.kind else "float"))
+        return _V(_UNARY_OPS[fn](_num(v, where)), kind or v.kind)
+    return unary
+
+
+def _compile_rand(nid: str, port: str | None) -> _Op:
+    """``rand(a)``: ``a`` times a uniform draw seeded by the evaluation's seed and the node's id."""
+    def rand(env: _Env, ins: _Inputs) -> _V:
+        v = ins.get(port) if port is not None else None
+        a = _num(v, f"node {nid} (rand)") if v is not None else torch.ones(1, device=env.device, dtype=env.dtype)
+        g = torch.Generator().manual_seed(_seed_for(env.seed, nid))
+        u = torch.rand(a.shape[-1], generator=g, dtype=torch.float64).to(device=env.device, dtype=env.dtype)
+        return _V(a * u, "float")
+    return rand
+
+
+def _compile_binary(fn: str, where: str) -> _Op:
+    kind, op = function_kind(fn), _BINARY_OPS[fn]
+
+    def binary(env: _Env, ins: _Inputs) -> _V:
+        va, vb = ins.get("a"), ins.get("b")
+        if fn == "atan2" and va is not None and vb is None:
+            return _V(_atan2_unary(_num(va, where)), "float")
+        if va is None or vb is None:
+            raise _err(f"{where}: input {'a' if va is None else 'b'} not connected")
+        if fn in ("eq", "noteq") and (va.kind == "string" or vb.kind == "string"):
+            same = va.t == vb.t if va.kind == vb.kind == "string" else False
+            return _V(torch.tensor([float(same == (fn == "eq"))], device=env.device, dtype=env.dtype), "bool")
+        a, b = _num(va, where), _num(vb, where)
+        integer = va.kind == "int" and vb.kind == "int"
+        return _V(op(a, b, integer), kind or ("int" if integer else va.kind if va.kind == vb.kind else "float"))
+    return binary
+
+
+_COMPILERS: tuple[tuple[tuple[str, ...], Callable[[str, str, Any, str], _Op]], ...] = (
+    (("const_",), _compile_const),
+    (("get_",), _compile_get),
+    (("set", "sequence"), _compile_pass_on),
+    (("samplelum", "samplecol"), _compile_sampler),
+    (("vector", "ivector"), _compile_vector),
+    (("swizzle", "iswizzle"), _compile_swizzle),
+    (("ifelse",), _compile_ifelse),
+    (("lerp",), _compile_lerp),
+    (("cartesian",), _compile_cartesian),
+)
 
 
 def _safe_div(a, b, integer):
@@ -444,42 +588,49 @@ def _safe_div(a, b, integer):
     return a / b
 
 
-def _binary(fn, a, b, integer):
-    if fn == "add":
-        return a + b
-    if fn == "sub":
-        return a - b
-    if fn in ("mul", "mulscalar"):
-        return a * b
-    if fn == "div":
-        return _safe_div(a, b, integer)
-    if fn == "mod":
-        safe = torch.where(b == 0, torch.ones_like(b), b)
-        return torch.where(b == 0, torch.zeros_like(a * b), torch.fmod(a, safe))
-    if fn == "dot":
-        return (a * b).sum(-1, keepdim=True)
-    if fn == "cross":
-        a, b = torch.broadcast_tensors(a, b)
-        if a.shape[-1] != 3:
-            raise _err("cross: expected 3-vectors")
-        return torch.linalg.cross(a, b, dim=-1)
-    if fn == "min":
-        return torch.minimum(a, b)
-    if fn == "max":
-        return torch.maximum(a, b)
-    if fn == "pow":
-        return torch.pow(a, b)
-    if fn == "atan2":
-        return torch.atan2(a, b)
-    if fn == "and":
-        return ((a > 0.5) & (b > 0.5)).all(-1, keepdim=True).to(a.dtype)
-    if fn == "or":
-        return ((a > 0.5) | (b > 0.5)).all(-1, keepdim=True).to(a.dtype)
-    cmp = {"eq": torch.eq, "noteq": torch.ne, "gt": torch.gt, "gteq": torch.ge, "lr": torch.lt,
-           "lreq": torch.le}[fn]
-    res = cmp(a, b)
-    res = res.any(-1, keepdim=True) if fn == "noteq" else res.all(-1, keepdim=True)
-    return res.to(a.dtype)
+def _mod(a, b, integer):
+    safe = torch.where(b == 0, torch.ones_like(b), b)
+    return torch.where(b == 0, torch.zeros_like(a * b), torch.fmod(a, safe))
+
+
+def _cross(a, b, integer):
+    a, b = torch.broadcast_tensors(a, b)
+    if a.shape[-1] != 3:
+        raise _err("cross: expected 3-vectors")
+    return torch.linalg.cross(a, b, dim=-1)
+
+
+def _compare(cmp: Callable, reduce_any: bool) -> Callable:
+    """A comparison reduced over the components: all of them, or any for ``noteq``."""
+    def compare(a, b, integer):
+        res = cmp(a, b)
+        res = res.any(-1, keepdim=True) if reduce_any else res.all(-1, keepdim=True)
+        return res.to(a.dtype)
+    return compare
+
+
+_BINARY_OPS: dict[str, Callable] = {
+    "add": lambda a, b, integer: a + b,
+    "sub": lambda a, b, integer: a - b,
+    "mul": lambda a, b, integer: a * b,
+    "mulscalar": lambda a, b, integer: a * b,
+    "div": _safe_div,
+    "mod": _mod,
+    "dot": lambda a, b, integer: (a * b).sum(-1, keepdim=True),
+    "cross": _cross,
+    "min": lambda a, b, integer: torch.minimum(a, b),
+    "max": lambda a, b, integer: torch.maximum(a, b),
+    "pow": lambda a, b, integer: torch.pow(a, b),
+    "atan2": lambda a, b, integer: torch.atan2(a, b),
+    "and": lambda a, b, integer: ((a > 0.5) & (b > 0.5)).all(-1, keepdim=True).to(a.dtype),
+    "or": lambda a, b, integer: ((a > 0.5) | (b > 0.5)).all(-1, keepdim=True).to(a.dtype),
+    "eq": _compare(torch.eq, False),
+    "noteq": _compare(torch.ne, True),
+    "gt": _compare(torch.gt, False),
+    "gteq": _compare(torch.ge, False),
+    "lr": _compare(torch.lt, False),
+    "lreq": _compare(torch.le, False),
+}
 
 
 def _atan2_unary(a):
@@ -516,5 +667,6 @@ _UNARY_OPS: dict[str, Callable] = {
 
 
 evaluate_function_graph = evaluate
+compile_function_graph = compile_graph
 validate_function_graph = validate
 load_function_graph = loads

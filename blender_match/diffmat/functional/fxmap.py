@@ -48,6 +48,31 @@ def _grid(size, device, dtype):
     return u, v
 
 
+def _check_fx_map_args(inputpattern, size, x_amount, y_amount, blendingmode) -> str:
+    """Check the discrete arguments of ``fx_map``; returns the blending mode's name."""
+    check_image(inputpattern, "fxmaps.inputpattern")
+    check_size(size, "fxmaps.size")
+    for name, value in (("x_amount", x_amount), ("y_amount", y_amount)):
+        if isinstance(value, bool) or not isinstance(value, int) or not 1 <= value <= 256:
+            raise DiffMatError(f"fxmaps.{name}: expected an integer in [1, 256], got {value!r}")
+    if blendingmode not in BLENDING:
+        raise DiffMatError(f"fxmaps.blendingmode: unknown value {blendingmode!r}; expected one of {list(BLENDING)}")
+    return BLENDING[blendingmode]
+
+
+def _background(image: torch.Tensor | None, color: torch.Tensor, channels: int, size: int, dev, dt) -> torch.Tensor:
+    """The image the copies are composited on: ``image`` resampled to ``size``, or ``color``."""
+    if image is not None:
+        check_image(image, "fxmaps.background")
+        bg = match_channels(image, channels)
+        if bg.shape[-2:] != (size, size):
+            u, v = _grid(size, dev, dt)
+            bg = sample_wrap(bg, u[None].expand(bg.shape[0], -1, -1), v[None].expand(bg.shape[0], -1, -1))
+        return bg
+    col = color if channels == 4 else color[:, :1]
+    return col[:, :, None, None].expand(-1, -1, size, size)
+
+
 def fx_map(inputpattern: torch.Tensor, background_image: torch.Tensor | None = None, *,
            x_amount: int = 4, y_amount: int = 4, offset=0.0, scale=1.0, rotation=0.0,
            position_random=0.0, rotation_random=0.0, scale_random=0.0, opacity_random=0.0,
@@ -64,14 +89,7 @@ def fx_map(inputpattern: torch.Tensor, background_image: torch.Tensor | None = N
     Output: grayscale, or RGBA when ``colorswitch`` is on (the pattern is converted to match);
     colour patterns are composited premultiplied by their alpha. Values are clamped to [0, 1].
     """
-    check_image(inputpattern, "fxmaps.inputpattern")
-    check_size(size, "fxmaps.size")
-    for name, value in (("x_amount", x_amount), ("y_amount", y_amount)):
-        if isinstance(value, bool) or not isinstance(value, int) or not 1 <= value <= 256:
-            raise DiffMatError(f"fxmaps.{name}: expected an integer in [1, 256], got {value!r}")
-    if blendingmode not in BLENDING:
-        raise DiffMatError(f"fxmaps.blendingmode: unknown value {blendingmode!r}; expected one of {list(BLENDING)}")
-    mode = BLENDING[blendingmode]
+    mode = _check_fx_map_args(inputpattern, size, x_amount, y_amount, blendingmode)
     like = inputpattern
     dev, dt = like.device, like.dtype
     nx, ny = x_amount, y_amount
@@ -89,16 +107,7 @@ def fx_map(inputpattern: torch.Tensor, background_image: torch.Tensor | None = N
     if bgc.shape[1] != 4:
         raise DiffMatError(f"fxmaps.background: expected 4 components, got {bgc.shape[1]}")
 
-    # background
-    if background_image is not None:
-        check_image(background_image, "fxmaps.background")
-        bg = match_channels(background_image, oc)
-        if bg.shape[-2:] != (size, size):
-            u, v = _grid(size, dev, dt)
-            bg = sample_wrap(bg, u[None].expand(bg.shape[0], -1, -1), v[None].expand(bg.shape[0], -1, -1))
-    else:
-        col = bgc if oc == 4 else bgc[:, :1]
-        bg = col[:, :, None, None].expand(-1, -1, size, size)
+    bg = _background(background_image, bgc, oc, size, dev, dt)
 
     # the pattern, premultiplied, with an alpha (coverage) channel last
     pat = match_channels(inputpattern, oc)
@@ -139,7 +148,10 @@ def fx_map(inputpattern: torch.Tensor, background_image: torch.Tensor | None = N
     rnd = torch.rand(5, ny * nx, generator=g, dtype=torch.float64).to(device=dev, dtype=dt)
     rpx, rpy, rrot, rsc = (rnd[:4] * 2 - 1).unbind(0)
     rop = rnd[4]
-    flat = lambda t: t.reshape(t.shape[0], 1)                           # (B|1, 1)
+
+    def flat(t):
+        return t.reshape(t.shape[0], 1)                                 # (B|1, 1)
+
     theta = (flat(rot) + flat(rr) * rrot) * (2 * math.pi)
     inv_s = 1.0 / torch.clamp(flat(sc) * (1.0 + flat(sr) * rsc), min=1e-4)
     bt = max(t.shape[0] for t in (off, sc, rot, pr, rr, sr, orr, om))

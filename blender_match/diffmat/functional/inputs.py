@@ -28,7 +28,7 @@ _CACHE_SIZE = 16
 def load_image(path: str) -> torch.Tensor:
     """Read an image file as a (1, 4, H, W) float32 RGBA tensor in [0, 1] (16-bit and float
     grayscale files keep their precision). DiffMatError naming the file when it cannot be read."""
-    try:
+    try:  # Pillow is imported when an image is read, not with the engine
         from PIL import Image
     except ImportError:  # pragma: no cover - pillow is a dependency
         raise DiffMatError(f"bitmap: cannot read {path!r}: Pillow is not installed") from None
@@ -101,7 +101,8 @@ def bitmap(*, bitmapresourcepath: str = "", colorswitch: bool = True, size: int 
         try:
             stamp = os.stat(path).st_mtime_ns
         except OSError:
-            raise DiffMatError(f"bitmap: image file {bitmapresourcepath!r} does not exist or cannot be opened") from None
+            raise DiffMatError(f"bitmap: image file {bitmapresourcepath!r} does not exist "
+                               "or cannot be opened") from None
         key = (path, stamp, size)
         cached = _CACHE.get(key)
         if cached is None:

@@ -9,8 +9,9 @@ from __future__ import annotations
 
 import torch
 
+from ...colour import LINEAR_KNEE, SRGB_GAMMA, SRGB_KNEE, SRGB_OFFSET, SRGB_SCALE, SRGB_SLOPE
 from ..errors import DiffMatError
-from .common import COLOR, lerp, param2d, param4d, to_gray
+from .common import COLOR, check_bool, expand_batch, lerp, param2d, param4d, to_gray
 
 __all__ = ["histogram_scan", "histogram_range", "histogram_select", "invert", "auto_levels",
            "contrast_luminosity", "replace_color", "switch", "multi_switch", "rgba_merge",
@@ -33,19 +34,6 @@ def _map_rgb(x: torch.Tensor, fn) -> torch.Tensor:
     return fn(x)
 
 
-def _bool(value, name: str) -> bool:
-    if value in (0, 1, True, False):
-        return bool(value)
-    raise DiffMatError(f"{name}: expected a boolean, got {value!r}")
-
-
-def _expand_batch(out: torch.Tensor, *params) -> torch.Tensor:
-    """Expand ``out`` to the batch size of (B, k) parameters that do not otherwise enter the
-    computation, so a batch of B parameter sets always gives B outputs."""
-    b = max([out.shape[0]] + [param4d(p).shape[0] for p in params])
-    return out.expand(b, -1, -1, -1) if b != out.shape[0] else out
-
-
 def _remap(x: torch.Tensor, lo: torch.Tensor, hi: torch.Tensor) -> torch.Tensor:
     """Linear map of [lo, hi] onto [0, 1], clamped; a zero-width window is a (steep) threshold."""
     return ((x - lo) / (hi - lo).clamp_min(_EPS)).clamp(0.0, 1.0)
@@ -61,7 +49,7 @@ def histogram_scan(input_1: torch.Tensor, *, position=0.0, contrast=0.0, invert_
     """
     x = _gray(input_1)
     p = param4d(position, x)
-    t = p if _bool(invert_position, "histogram_scan.invert_position") else 1.0 - p
+    t = p if check_bool(invert_position, "histogram_scan.invert_position") else 1.0 - p
     c = param4d(contrast, x)
     lo0 = (2 * t - 1).clamp_min(0.0)
     hi0 = (2 * t).clamp_max(1.0)
@@ -96,7 +84,7 @@ def histogram_select(input: torch.Tensor, *, position=0.5, range=0.25, contrast=
 # ---------------------------------------------------------------- simple adjustments
 def invert(source: torch.Tensor, *, invert: bool = True):
     """Invert: 1 - x on gray, or on RGB keeping alpha; identity when ``invert`` is off."""
-    if not _bool(invert, "invert.invert"):
+    if not check_bool(invert, "invert.invert"):
         return source
     return _map_rgb(source, lambda v: 1.0 - v)
 
@@ -109,7 +97,7 @@ def auto_levels(input: torch.Tensor, *, quality=0.0):
     hi = x.amax(dim=(-2, -1), keepdim=True)
     flat = (hi - lo) < _EPS
     out = (x - lo) / (hi - lo).clamp_min(_EPS)
-    return _expand_batch(torch.where(flat, torch.full_like(x, 0.5), out).clamp(0.0, 1.0), quality)
+    return expand_batch(torch.where(flat, torch.full_like(x, 0.5), out).clamp(0.0, 1.0), quality)
 
 
 def contrast_luminosity(input: torch.Tensor, *, contrast=0.0, luminosity=0.0):
@@ -143,11 +131,11 @@ def _rgb_to_hsl(rgb: torch.Tensor):
     return hue, sat.clamp(0.0, 1.0), light
 
 
-def _hsl_to_rgb(h, s, l):
-    c = (1 - (2 * l - 1).abs()) * s
+def _hsl_to_rgb(h, s, light):
+    c = (1 - (2 * light - 1).abs()) * s
     k = torch.stack([torch.remainder(n + h * 12, 12.0) for n in (0.0, 8.0, 4.0)], dim=1)
     a = c[:, None] / 2
-    f = l[:, None] - a * torch.clamp(torch.minimum(k - 3, 9 - k), -1.0, 1.0)
+    f = light[:, None] - a * torch.clamp(torch.minimum(k - 3, 9 - k), -1.0, 1.0)
     return f
 
 
@@ -159,8 +147,8 @@ def replace_color(input: torch.Tensor, *, sourcecolor=(0.5, 0.5, 0.5, 1.0), targ
     dst = param2d(targetcolor, x)[:, :3, None, None]
     hs, ss, ls = _rgb_to_hsl(src)
     ht, st, lt = _rgb_to_hsl(dst)
-    h, s, l = _rgb_to_hsl(x[:, :3])
-    rgb = _hsl_to_rgb(torch.remainder(h + ht - hs, 1.0), (s + st - ss).clamp(0, 1), (l + lt - ls).clamp(0, 1))
+    h, s, light = _rgb_to_hsl(x[:, :3])
+    rgb = _hsl_to_rgb(torch.remainder(h + ht - hs, 1.0), (s + st - ss).clamp(0, 1), (light + lt - ls).clamp(0, 1))
     alpha = x[:, 3:].expand(rgb.shape[0], -1, -1, -1)
     return torch.cat([rgb.clamp(0.0, 1.0), alpha], dim=1)
 
@@ -168,7 +156,7 @@ def replace_color(input: torch.Tensor, *, sourcecolor=(0.5, 0.5, 0.5, 1.0), targ
 # ---------------------------------------------------------------- switches
 def switch(input_1: torch.Tensor, input_2: torch.Tensor, *, switch: bool = True):
     """Switch: ``input_1`` when ``switch`` is on, else ``input_2``."""
-    return input_1 if _bool(switch, "switch.switch") else input_2
+    return input_1 if check_bool(switch, "switch.switch") else input_2
 
 
 def multi_switch(*inputs, input_number: int = 2, input_selection: int = 1):
@@ -185,7 +173,8 @@ def rgba_merge(r: torch.Tensor, g: torch.Tensor, b: torch.Tensor, a: torch.Tenso
                *, usealpha: bool = True):
     """RGBA Merge: four grayscale images to one RGBA image (alpha 1 when ``a`` is absent or unused)."""
     chans = [to_gray(r), to_gray(g), to_gray(b)]
-    chans.append(to_gray(a) if (a is not None and _bool(usealpha, "rgba_merge.usealpha")) else torch.ones_like(chans[0]))
+    use_alpha = a is not None and check_bool(usealpha, "rgba_merge.usealpha")
+    chans.append(to_gray(a) if a is not None and use_alpha else torch.ones_like(chans[0]))
     n = max(c.shape[0] for c in chans)
     return torch.cat([c.expand(n, -1, -1, -1) for c in chans], dim=1)
 
@@ -211,12 +200,13 @@ def rgb_a_split(rgba: torch.Tensor):
 
 
 def linear_to_srgb(input: torch.Tensor):
-    """Convert to sRGB: the sRGB transfer curve on the colour channels (alpha kept)."""
+    """Convert to sRGB: the sRGB transfer curve (``blender_match.colour``) on the colour channels
+    (alpha kept)."""
     def fn(v):
         v = v.clamp(0.0, 1.0)
-        lin = v * 12.92
-        curve = 1.055 * v.clamp_min(0.0031308) ** (1 / 2.4) - 0.055
-        return torch.where(v <= 0.0031308, lin, curve)
+        lin = v * SRGB_SLOPE
+        curve = SRGB_SCALE * v.clamp_min(LINEAR_KNEE) ** (1 / SRGB_GAMMA) - SRGB_OFFSET
+        return torch.where(v <= LINEAR_KNEE, lin, curve)
 
     return _map_rgb(input, fn)
 
@@ -225,7 +215,7 @@ def srgb_to_linear(input: torch.Tensor):
     """The inverse sRGB curve on the colour channels (alpha kept)."""
     def fn(v):
         v = v.clamp(0.0, 1.0)
-        curve = ((v.clamp_min(0.04045) + 0.055) / 1.055) ** 2.4
-        return torch.where(v <= 0.04045, v / 12.92, curve)
+        curve = ((v.clamp_min(SRGB_KNEE) + SRGB_OFFSET) / SRGB_SCALE) ** SRGB_GAMMA
+        return torch.where(v <= SRGB_KNEE, v / SRGB_SLOPE, curve)
 
     return _map_rgb(input, fn)

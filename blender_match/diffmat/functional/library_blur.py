@@ -13,9 +13,19 @@ import math
 import torch
 
 from ..errors import DiffMatError
-from .common import (_grid_affine, frequencies, gaussian_blur, gradient_wrap, lerp, param4d,
-                     pixel_grid, sample_wrap, to_gray)
-from .library_adjust import _bool, _expand_batch
+from .common import (
+    check_bool,
+    expand_batch,
+    frequencies,
+    gaussian_blur,
+    gradient_wrap,
+    grid_affine,
+    lerp,
+    param4d,
+    pixel_grid,
+    sample_wrap,
+    to_gray,
+)
 
 __all__ = ["blur_hq", "slope_blur", "non_uniform_blur", "highpass", "vector_warp", "vector_morph",
            "mosaic", "safe_transform", "make_it_tile_patch", "make_it_tile_photo"]
@@ -35,7 +45,7 @@ def blur_hq(source: torch.Tensor, *, intensity=10.0, quality=0.0):
     sigma of intensity / 2 pixels. ``quality`` (sample count in Substance) does not change this
     exact FFT version."""
     sigma = param4d(intensity, source).abs() * (BLUR_SIGMA * PX)
-    return _expand_batch(gaussian_blur(source, sigma).clamp(0.0, 1.0), quality)
+    return expand_batch(gaussian_blur(source, sigma).clamp(0.0, 1.0), quality)
 
 
 def highpass(source: torch.Tensor, *, radius=6.0):
@@ -76,12 +86,14 @@ def slope_blur(source: torch.Tensor, effect: torch.Tensor, *, samples: int = 8, 
     else:
         stack = torch.stack(taken, dim=0)
         out = stack.amax(dim=0) if kind == "max" else stack.amin(dim=0)
+    assert isinstance(out, torch.Tensor)  # ``taken`` is never empty, so its sum is a tensor
     return out.clamp(0.0, 1.0)
 
 
 def _slope_blur_nograd(source, effect, n, kind, intensity):
     """``slope_blur`` without autograd: one padded copy of the source, the sample grids built
-    in place, the samples accumulated in place (same arithmetic as the differentiable path)."""
+    in place, the samples accumulated in place (same arithmetic as the differentiable path).
+    What it saves: docs/engine.md, "No-grad twins"."""
     with torch.no_grad():
         gx, gy = gradient_wrap(gaussian_blur(to_gray(effect), PX))
         norm = gx * gx
@@ -97,7 +109,7 @@ def _slope_blur_nograd(source, effect, n, kind, intensity):
         padded = torch.nn.functional.pad(source, (1, 1, 1, 1), mode="circular")
         if padded.shape[0] != b:
             padded = padded.expand(b, -1, -1, -1)
-        scale, shift = _grid_affine(w, h, source.device, source.dtype)
+        scale, shift = grid_affine(w, h, source.device, source.dtype)
         out = source.expand(b, -1, -1, -1).clone() if kind == "blur" else None
         acc = source.expand(b, -1, -1, -1) if kind != "blur" else None
         for i in range(n):
@@ -251,7 +263,7 @@ def safe_transform(input: torch.Tensor, *, tile: int = 1, tile_mode: int = 0, ti
     else:
         tx = ty = int(tile)
     r = param4d(rotation, x)[:, :1]
-    if _bool(tile_safe_rotation, "safe_transform.tile_safe_rotation"):
+    if check_bool(tile_safe_rotation, "safe_transform.tile_safe_rotation"):
         ang = r.detach().flatten().tolist()
         mats = []
         for a in ang:
@@ -263,8 +275,8 @@ def safe_transform(input: torch.Tensor, *, tile: int = 1, tile_mode: int = 0, ti
                 mats.append((ca, -sb, sb, ca))
             else:
                 q = round(4 * a) % 4
-                c, s = ((1, 0), (0, 1), (-1, 0), (0, -1))[q]
-                mats.append((c * tx, -s * ty, s * tx, c * ty))
+                qc, qs = ((1, 0), (0, 1), (-1, 0), (0, -1))[q]
+                mats.append((qc * tx, -qs * ty, qs * tx, qc * ty))
         m = torch.tensor(mats, dtype=x.dtype, device=x.device).reshape(-1, 4, 1, 1)
         m = m + 0.0 * r  # keeps the batch (and the autograd graph) of ``rotation``
         m00, m01, m10, m11 = m[:, 0:1], m[:, 1:2], m[:, 2:3], m[:, 3:4]
@@ -327,7 +339,8 @@ def make_it_tile_patch(source: torch.Tensor, *, octave: int = 3, size=1.0, disor
     i0 = torch.floor(u * n - 0.5).long()
     j0 = torch.floor(v * n - 0.5).long()
     sharp = (1.0 + 12.0 * prec) / (msize * msize)
-    num, den = 0.0, 0.0
+    num: float | torch.Tensor = 0.0
+    den: float | torch.Tensor = 0.0
     for di in (0, 1):
         for dj in (0, 1):
             ci = torch.remainder(i0 + di, n)
@@ -346,6 +359,7 @@ def make_it_tile_patch(source: torch.Tensor, *, octave: int = 3, size=1.0, disor
             sv = 0.25 + 0.5 * src_v + (sa * lu + ca * lv) / scale
             num = num + w * sample_wrap(x, su, sv)
             den = den + w
+    assert isinstance(num, torch.Tensor)  # the loops above always run
     return (num / (den + 1e-12)).clamp(0.0, 1.0)
 
 

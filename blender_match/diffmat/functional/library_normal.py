@@ -15,9 +15,18 @@ import math
 import torch
 
 from ..errors import DiffMatError
-from .common import (COLOR, frequencies, gaussian_blur, gradient_wrap, param4d, pixel_grid,
-                     sample_wrap, to_gray)
-from .library_adjust import _bool, linear_to_srgb, srgb_to_linear
+from .common import (
+    COLOR,
+    check_bool,
+    frequencies,
+    gaussian_blur,
+    gradient_wrap,
+    param4d,
+    pixel_grid,
+    sample_wrap,
+    to_gray,
+)
+from .library_adjust import linear_to_srgb, srgb_to_linear
 
 __all__ = ["normal_combine", "normal_blend", "normal_normalise", "normal_to_height", "curvature",
            "curvature_smooth", "hbao", "ambient_occlusion", "edge_detect", "bevel",
@@ -66,7 +75,8 @@ def height_to_normal_map(height: torch.Tensor, intensity=1.0, normal_format: int
 
 def _whiteout_nograd(a: torch.Tensor, b: torch.Tensor) -> torch.Tensor:
     """``normal_combine`` quality 0 on encoded RGBA maps without autograd: the same arithmetic as
-    the differentiable path (and ``_encode``), on in-place buffers."""
+    the differentiable path (and ``_encode``), on in-place buffers. What it saves: docs/engine.md,
+    "No-grad twins"."""
     with torch.no_grad():
         n = max(a.shape[0], b.shape[0])
         v = torch.empty((n, 3) + tuple(a.shape[-2:]), dtype=a.dtype, device=a.device)
@@ -112,7 +122,7 @@ def normal_blend(normalbg: torch.Tensor, normalfg: torch.Tensor, mask: torch.Ten
     and ``use_mask``), renormalised."""
     a, b = _decode(normalbg), _decode(normalfg)
     w = param4d(opacity, a)
-    if mask is not None and _bool(use_mask, "normal_blend.use_mask"):
+    if mask is not None and check_bool(use_mask, "normal_blend.use_mask"):
         w = w * to_gray(mask)
     return _encode(a + (b - a) * w)
 
@@ -211,14 +221,14 @@ def hbao(input: torch.Tensor, *, height_depth=0.1, radius=1.0, quality: int = 4,
     if quality not in (4, 8, 16):
         raise DiffMatError(f"hbao.quality: unknown value {quality!r}; expected 4, 8 or 16")
     h = to_gray(input)
-    if _bool(use_world_units, "hbao.use_world_units"):
+    if check_bool(use_world_units, "hbao.use_world_units"):
         depth = param4d(height_scale, h) / param4d(surface_size, h).clamp_min(1e-3)
     else:
         depth = param4d(height_depth, h) * HBAO_HEIGHT
     rad = param4d(radius, h).clamp_min(1e-4) * HBAO_RADIUS
     dirs = min(quality, 8)
     u, v = pixel_grid(h.shape[-1], h.device, h.dtype)
-    occ = 0.0
+    occ: float | torch.Tensor = 0.0
     for d in range(dirs):
         a = 2 * math.pi * (d + 0.5) / dirs
         best = None
@@ -227,7 +237,9 @@ def hbao(input: torch.Tensor, *, height_depth=0.1, radius=1.0, quality: int = 4,
             sample = sample_wrap(h, u + dist * math.cos(a), v + dist * math.sin(a))
             tan = (sample - h) * depth / dist
             best = tan if best is None else torch.maximum(best, tan)
+        assert best is not None  # HBAO_STEPS >= 1
         occ = occ + (best / torch.sqrt(1 + best * best)).clamp_min(0.0)
+    assert isinstance(occ, torch.Tensor)  # quality >= 4 directions
     return (1.0 - occ / dirs).clamp(0.0, 1.0)
 
 
@@ -246,7 +258,7 @@ def ambient_occlusion(source: torch.Tensor, *, height_depth=0.15, spreading=0.15
     f2 = fx * fx + fy * fy
     spread = param4d(spreading, h).clamp_min(1e-4) * 0.25
     eq = param4d(equalizer, h) * 2.0
-    transfer = 0.0
+    transfer: float | torch.Tensor = 0.0
     for k, frac in enumerate(AO_SCALES):
         sigma = spread * frac
         transfer = transfer + eq[:, k:k + 1] * (torch.exp(-2 * math.pi ** 2 * sigma ** 2 * f2) - 1.0)
@@ -265,8 +277,8 @@ def edge_detect(input: torch.Tensor, *, edge_width=2.0, edge_roundness=4.0, tole
     """Edge Detect: white lines along the contours of a (mostly two-tone) image.
 
     The gradient magnitude (central differences) of the image blurred by sigma = ``edge_width`` / 2
-    (256-px pixels), normalised so a unit step peaks at about 1, minus ``tolerance``, gained x 2 and rounded by a blur of
-    ``edge_roundness`` / 2 pixels; ``invert`` gives black lines on white."""
+    (256-px pixels), normalised so a unit step peaks at about 1, minus ``tolerance``, gained x 2
+    and rounded by a blur of ``edge_roundness`` / 2 pixels; ``invert`` gives black lines on white."""
     x = to_gray(input)
     size = x.shape[-1]
     sigma = torch.sqrt((param4d(edge_width, x) * 0.5 * PX) ** 2 + (0.5 / size) ** 2)
@@ -274,19 +286,20 @@ def edge_detect(input: torch.Tensor, *, edge_width=2.0, edge_roundness=4.0, tole
     tol = param4d(tolerance, x)
     if (not torch.is_grad_enabled() or not (x.requires_grad or sigma.requires_grad or tol.requires_grad)) \
             and max(sigma.shape[0], tol.shape[0]) <= gu.shape[0]:
-        with torch.no_grad():   # the same arithmetic on in-place buffers
+        # no-grad twin: the same arithmetic on in-place buffers (docs/engine.md, "No-grad twins")
+        with torch.no_grad():
             e = (gu * gu).add_(gv * gv).add_(1e-12).sqrt_()
             del gu, gv
             e.mul_(torch.sqrt(sigma ** 2 + (1.0 / size) ** 2)).mul_(math.sqrt(2 * math.pi))
             e.sub_(tol).div_((1 - tol).clamp_min(1e-3)).mul_(2.0).clamp_(0.0, 1.0)
             out = gaussian_blur(e, param4d(edge_roundness, x).abs() * 0.5 * PX).clamp_(0.0, 1.0)
-            return out.neg_().add_(1.0) if _bool(invert, "edge_detect.invert") else out
+            return out.neg_().add_(1.0) if check_bool(invert, "edge_detect.invert") else out
     # a unit step blurred by sigma peaks at 1 / (sigma sqrt(2 pi)); central differences widen it
     e = torch.sqrt(gu * gu + gv * gv + 1e-12) * torch.sqrt(sigma ** 2 + (1.0 / size) ** 2) * math.sqrt(2 * math.pi)
     tol = param4d(tolerance, x)
     out = ((e - tol) / (1 - tol).clamp_min(1e-3) * 2.0).clamp(0.0, 1.0)
     out = gaussian_blur(out, param4d(edge_roundness, x).abs() * 0.5 * PX).clamp(0.0, 1.0)
-    return 1.0 - out if _bool(invert, "edge_detect.invert") else out
+    return 1.0 - out if check_bool(invert, "edge_detect.invert") else out
 
 
 BEVEL_WIDTH = 0.2          # image widths of bevel at distance 1
@@ -297,7 +310,8 @@ def bevel(input: torch.Tensor, *, distance=0.5, smoothing=0.0, normal_intensity=
 
     The signed distance to the mask's 0.5 contour is estimated to first order,
     (b - 0.5) / |grad b| with b the mask blurred by sigma = width (which keeps the estimate close
-    to linear out to ~0.8 width), and ramped over the bevel width ``distance`` x 0.2 image widths: positive bevels inwards (height 0 at the contour
+    to linear out to ~0.8 width), and ramped over the bevel width ``distance`` x 0.2 image widths:
+    positive bevels inwards (height 0 at the contour
     rising to 1 inside), negative outwards (1 at the contour falling to 0 outside). ``smoothing``
     blurs the height (x 2 pixels of 256). Returns (height, normal), the normal computed from the
     height with ``normal_intensity``."""

@@ -25,8 +25,22 @@ import torch
 import torch.nn.functional as F
 
 from .common import gaussian_blur, param4d
-from .noise_primitives import (blend_scales, cellular_noise, domain_warp, fractal_noise, gaussian_spot_field,
-                               lattice_noise, noise_batch, select_rows, squash, white_lattice_noise)
+from .noise_primitives import (
+    LAYER_STD,
+    blend_scales,
+    cellular_noise,
+    domain_warp,
+    fractal_noise,
+    gaussian_spot_field,
+    lattice_axis,
+    lattice_noise,
+    lattice_phases,
+    noise_batch,
+    select_rows,
+    squash,
+    supersample_factor,
+    white_lattice_noise,
+)
 
 __all__ = ["noise_recipe", "noise_white", "noise_white_fast", "noise_blue_fast", "noise_fractal_sum_base",
            "noise_anisotropic"]
@@ -202,15 +216,14 @@ def noise_anisotropic(*, x_amount: int = 8, y_amount: int = 128, smoothness=0.5,
 
 def _rows_nearest(nx, ny, size, seed, interp, device, dtype):
     """Value noise of lattice (nx, ny), interpolated along x, nearest (constant bands) along y."""
-    from .noise_primitives import _axis, _phases, _supersample, _STD
-    phi, _ = _phases(seed, ("anisotropic", "value"), ny, nx, device, dtype)
+    phi, _ = lattice_phases(seed, ("anisotropic", "value"), ny, nx, device, dtype)
     lat = torch.cos(2 * torch.pi * phi)
-    ss = max(_supersample(size, nx), _supersample(size, ny))
+    ss = max(supersample_factor(size, nx), supersample_factor(size, ny))
     res = size * ss
-    ix0, ix1, fx, wx = _axis(res, nx, device, dtype, interp)
-    iy0, _, _, _ = _axis(res, ny, device, dtype, "nearest")
+    ix0, ix1, fx, wx = lattice_axis(res, nx, device, dtype, interp)
+    iy0, _, _, _ = lattice_axis(res, ny, device, dtype, "nearest")
     t = lat[..., ix0] * (1 - wx) + lat[..., ix1] * wx
-    out = t[:, iy0][:, None] / _STD[("value", interp)]
+    out = t[:, iy0][:, None] / LAYER_STD[("value", interp)]
     if ss > 1:
         out = F.avg_pool2d(out, ss)
     return out

@@ -33,7 +33,7 @@ __all__ = ["lattice_noise", "fractal_noise", "cellular_noise", "gaussian_spot_fi
 TWO_PI = 2 * math.pi
 MAX_CELLS = 1024          # finest lattice any generator uses (cells across the image)
 # empirical standard deviations of one layer at disorder 0 (used to normalise layers to unit std)
-_STD = {("value", "quintic"): 0.547, ("value", "cubic"): 0.518, ("value", "linear"): 0.464,
+LAYER_STD = {("value", "quintic"): 0.547, ("value", "cubic"): 0.518, ("value", "linear"): 0.464,
         ("value", "nearest"): 0.707, ("gradient", "quintic"): 0.215, ("gradient", "cubic"): 0.211,
         ("gradient", "linear"): 0.209, ("gradient", "nearest"): 0.209}
 
@@ -46,7 +46,7 @@ def _rng(seed: int, *keys) -> torch.Generator:
     return torch.Generator().manual_seed(h * 2654435761 % (2 ** 62) + int(seed) % 997)
 
 
-def _phases(seed: int, key, ny: int, nx: int, device, dtype) -> tuple[torch.Tensor, torch.Tensor]:
+def lattice_phases(seed: int, key, ny: int, nx: int, device, dtype) -> tuple[torch.Tensor, torch.Tensor]:
     """Per-lattice-point phase (turns) and disorder speed (+1 or -1), each (1, ny, nx)."""
     g = _rng(seed, key, ny, nx)
     phi = torch.rand(1, ny, nx, generator=g, dtype=torch.float64)
@@ -66,7 +66,7 @@ def _as_batch(d, device, dtype) -> torch.Tensor:
     return t.reshape(t.shape[0], 1, 1)
 
 
-def _supersample(size: int, cells: int) -> int:
+def supersample_factor(size: int, cells: int) -> int:
     """Supersampling factor so that a render has >= 4 samples per cell (at most 4 x)."""
     ss = 1
     while size * ss < 4 * cells and ss < 4:
@@ -84,7 +84,7 @@ def _fade(t: torch.Tensor, interp: str) -> torch.Tensor:
     return torch.zeros_like(t)     # nearest: the lower lattice point, positions are cell-centred
 
 
-def _axis(res: int, n: int, device, dtype, interp: str, offset: float = 0.0):
+def lattice_axis(res: int, n: int, device, dtype, interp: str, offset: float = 0.0):
     """Lattice indices (i0, i1), fraction and fade weight of ``res`` pixel centres on an n-cell axis
     whose lattice points sit ``offset`` cells in from the image edge."""
     c = (torch.arange(res, device=device, dtype=torch.float64) + 0.5) / res * n - offset
@@ -198,6 +198,7 @@ def _apply_x(g: torch.Tensor, op: _AxisOp) -> torch.Tensor:
     for idx, w in op.cols:
         t = g.index_select(-1, idx) * w
         out = t if out is None else out + t
+    assert out is not None  # an axis op has at least one tap
     return out
 
 
@@ -232,7 +233,7 @@ def _phases_cached(seed, key, ny, nx, device, dtype):
     k = (int(seed), repr(key), ny, nx, str(device), dtype)
     hit = _PHASE_CACHE.get(k)
     if hit is None:
-        hit = _phases(seed, key, ny, nx, device, dtype)
+        hit = lattice_phases(seed, key, ny, nx, device, dtype)
         if len(_PHASE_CACHE) > 256:
             _PHASE_CACHE.clear()
         _PHASE_CACHE[k] = hit
@@ -259,14 +260,14 @@ def _layer_terms(cells, size: int, *, seed, key, kind, interp, disorder, weight,
         theta = TWO_PI * (phi + speed * d)                               # (B, ny, nx)
     else:
         theta = TWO_PI * phi
-    ss = max(_supersample(size, nx), _supersample(size, ny))
+    ss = max(supersample_factor(size, nx), supersample_factor(size, ny))
     # any lattice offset tiles; value noise is flattest at its lattice points and gradient noise
     # steepest there, so value lattices sit on the image edge and gradient ones half a cell in.
     off = 0.0 if kind == "value" else 0.5
     if kind == "value":
         ax = _axis_ops(size, nx, ss, interp, off, device, dtype)
         ay = _axis_ops(size, ny, ss, interp, off, device, dtype)
-        w = weight / _STD[(kind, interp)]
+        w = weight / LAYER_STD[(kind, interp)]
         return [(ay["lerp"], _apply_x(torch.cos(theta) * w, ax["lerp"]))]
     if kind == "gradient":
         # Perlin noise is 0 at its lattice points and its variance halves along the lattice lines,
@@ -274,7 +275,7 @@ def _layer_terms(cells, size: int, *, seed, key, kind, interp, disorder, weight,
         # cell (variance highest where the first's is lowest) makes the sum's variance nearly
         # uniform, so the noise looks isotropic. Both tile; the sum keeps unit std.
         interp_ = "linear" if interp == "nearest" else interp
-        w = weight / (_STD[(kind, interp)] * math.sqrt(2.0))
+        w = weight / (LAYER_STD[(kind, interp)] * math.sqrt(2.0))
         terms = []
         for lat_off, th in ((off, theta), (0.0, _second_theta(seed, key, kind, ny, nx, disorder, device, dtype))):
             ax = _axis_ops(size, nx, ss, interp_, lat_off, device, dtype)
@@ -319,8 +320,8 @@ def fractal_noise(cells, size: int, *, octaves: int, roughness=0.5, seed: int = 
     rb = r.reshape(r.shape[0], 1, 1)
     total = None
     terms = []
-    norm = 0.0
-    bias = 0.0
+    norm: float | torch.Tensor = 0.0
+    bias: float | torch.Tensor = 0.0
     for o in range(first_octave, first_octave + octaves):
         f = lacunarity ** o
         cx, cy = nx * f, ny * f
@@ -347,10 +348,12 @@ def fractal_noise(cells, size: int, *, octaves: int, roughness=0.5, seed: int = 
             total = soft_abs * gain if total is None else torch.addcmul(total, soft_abs, gain)
         else:
             total = layer * w if total is None else torch.addcmul(total, layer, w)
+    assert isinstance(norm, torch.Tensor)  # octaves >= 1: the first octave is always counted
     if mode == "fbm":
         total = _apply_y(terms)[:, None]
         return total * torch.rsqrt(norm)
     inv = torch.rsqrt(norm)
+    assert total is not None  # the first octave is always rendered
     return torch.addcmul(bias * inv, total, inv)
 
 
@@ -361,7 +364,7 @@ def _const(value: float, like: torch.Tensor) -> torch.Tensor:
 # ----------------------------------------------------------------------------------------------
 # cellular fields
 def _cell_grid(size: int, n: int, device, dtype):
-    ss = _supersample(size, n)
+    ss = supersample_factor(size, n)
     res = size * ss
     c = (torch.arange(res, device=device, dtype=dtype) + 0.5) / res * n
     ci = torch.floor(c.detach()).long()
@@ -408,6 +411,16 @@ def _split_offsets(px, py, size, n, device, dtype):
     return ss, res, ci, ncell, ox, oy
 
 
+def _row_chunks(tx: torch.Tensor, ty: torch.Tensor, ci: torch.Tensor, res: int, b: int):
+    """Blocks of sample rows (at most ``_ROWS_CHUNK`` candidate values each): yields the block's
+    cell rows and its two row gathers, ``tx`` (B, n, res, 9) by cell row and ``ty`` (B, res, n, 9)
+    by cell column, each (B, m, res, 9)."""
+    chunk = max(1, _ROWS_CHUNK // (9 * res * b))
+    for r0 in range(0, res, chunk):
+        rows = ci[r0:r0 + chunk]
+        yield rows, tx.index_select(1, rows), ty[:, r0:r0 + rows.shape[0]].index_select(2, ci)
+
+
 def cellular_noise(cells: int, size: int, *, seed: int = 0, key="cells", jitter=1.0, disorder=0.0,
                    device=None, dtype=torch.float32) -> dict:
     """Worley (cellular) fields on an n x n jittered grid that wraps.
@@ -431,12 +444,8 @@ def cellular_noise(cells: int, size: int, *, seed: int = 0, key="cells", jitter=
     slx = (attr[1] * 2 - 1)[nflat]
     sly = (attr[2] * 2 - 1)[nflat]
     d1s, d2s, v1s, fcs = [], [], [], []
-    chunk = max(1, _ROWS_CHUNK // (9 * res * b))
-    for r0 in range(0, res, chunk):
-        rows = ci[r0:r0 + chunk]
+    for rows, gx, gy in _row_chunks(ox, oy, ci, res, b):
         m = rows.shape[0]
-        gx = ox.index_select(1, rows)                                       # (B, m, res, 9)
-        gy = oy[:, r0:r0 + m].index_select(2, ci)
         dist = torch.addcmul(gx * gx, gy, gy)
         d12, i12 = torch.topk(dist, 2, dim=-1, largest=False)               # sorted ascending
         i1 = i12[..., :1]
@@ -478,14 +487,7 @@ def gaussian_spot_field(cells: int, size: int, *, seed: int = 0, key="spots", ra
     ey = torch.exp(-(oy * oy) * iy)
     b = max(ex.shape[0], ey.shape[0])
     ex, ey = ex.expand(b, -1, -1, -1), ey.expand(b, -1, -1, -1)
-    parts = []
-    chunk = max(1, _ROWS_CHUNK // (9 * res * b))
-    for r0 in range(0, res, chunk):
-        rows = ci[r0:r0 + chunk]
-        m = rows.shape[0]
-        gx = ex.index_select(1, rows)                                       # (B, m, res, 9)
-        gy = ey[:, r0:r0 + m].index_select(2, ci)
-        parts.append((gx * gy).sum(-1))
+    parts = [(gx * gy).sum(-1) for _, gx, gy in _row_chunks(ex, ey, ci, res, b)]
     out = torch.cat(parts, 1)[:, None]
     if ss > 1:
         out = F.avg_pool2d(out, ss)

@@ -19,6 +19,7 @@ per image, so every output tiles. Angles are in turns.
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 from typing import Callable
 
 import torch
@@ -80,7 +81,8 @@ def check_int(value, name: str, lo: int, hi: int) -> int:
 
 
 def check_enum(value, name: str, choices) -> int:
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or int(value) != value or int(value) not in choices:
+    integral = not isinstance(value, bool) and isinstance(value, (int, float)) and int(value) == value
+    if not integral or int(value) not in choices:
         raise DiffMatError(f"{name}: unknown value {value!r}; expected one of {list(choices)}")
     return int(value)
 
@@ -92,29 +94,42 @@ def _bell(r):
     return 0.5 + 0.5 * torch.cos(math.pi * r.clamp(max=1.0))
 
 
+_BOX_SHAPES = ("square", "pyramid", "brick", "gradation", "waves")
+
+
 def shape_profile(name: str, x: torch.Tensor, y: torch.Tensor, w, spec) -> torch.Tensor:
     """Height in [0, 1] of shape ``name`` at local coordinates (x, y) (the shape fills [-1, 1]²,
     y downwards). ``w``: one pixel in local units (anti-aliasing); ``spec``: Substance's "pattern
     specific" control in [0, 1] (bevel, frequency, offset… depending on the shape)."""
-    if name in ("square", "pyramid", "brick", "gradation", "waves"):
-        m = torch.maximum(x.abs(), y.abs())
-        if name == "square":
-            return aa_coverage(m - 1.0, w)
-        if name == "pyramid":
-            return (1.0 - m).clamp_min(0.0)
-        if name == "brick":
-            bevel = 0.02 + 0.5 * spec
-            return ((1.0 - m) / bevel).clamp(0.0, 1.0)
-        box = aa_coverage(m - 1.0, w)
-        if name == "gradation":
-            return box * ((x + 1.0) * 0.5).clamp(0.0, 1.0)
-        k = 1.0 + 4.0 * spec
-        return box * (0.5 + 0.5 * torch.cos(math.pi * k * x))
+    if name in _BOX_SHAPES:
+        return _box_profile(name, x, y, w, spec)
     if name == "capsule":
         rad = 0.25 + 0.5 * spec
         px = (x.abs() - (1.0 - rad)).clamp_min(0.0)
         d = safe_hypot(px, y) / rad
         return safe_sqrt(1.0 - d * d) * aa_coverage((d - 1.0) * rad, w)
+    return _round_profile(name, x, y, w, spec)
+
+
+def _box_profile(name: str, x: torch.Tensor, y: torch.Tensor, w, spec) -> torch.Tensor:
+    """The shapes built on the square's distance max(|x|, |y|) (``_BOX_SHAPES``)."""
+    m = torch.maximum(x.abs(), y.abs())
+    if name == "square":
+        return aa_coverage(m - 1.0, w)
+    if name == "pyramid":
+        return (1.0 - m).clamp_min(0.0)
+    if name == "brick":
+        bevel = 0.02 + 0.5 * spec
+        return ((1.0 - m) / bevel).clamp(0.0, 1.0)
+    box = aa_coverage(m - 1.0, w)
+    if name == "gradation":
+        return box * ((x + 1.0) * 0.5).clamp(0.0, 1.0)
+    k = 1.0 + 4.0 * spec
+    return box * (0.5 + 0.5 * torch.cos(math.pi * k * x))
+
+
+def _round_profile(name: str, x: torch.Tensor, y: torch.Tensor, w, spec) -> torch.Tensor:
+    """The shapes built on the distance to the centre r = hypot(x, y)."""
     r = safe_hypot(x, y)
     if name == "disc":
         return aa_coverage(r - 1.0, w)
@@ -191,6 +206,134 @@ def _split2(value, ref):
     return t[:, 0:1], t[:, 1:2]
 
 
+def _active(t: torch.Tensor) -> bool:
+    """Whether a per-cell random control matters: non-zero, or trainable."""
+    return t.requires_grad or bool((t != 0).any())
+
+
+def _tile_reach(nx, ny, hx, hy, rotation, rotation_random, position_random, softness):
+    """How many cells (per axis) around a pixel's own may hold a shape reaching it: (rotated,
+    window x, window y), the windows per batch element (B|1, 1, 1, 1). The shape's reach is
+    detached: it only chooses how many candidate cells to evaluate."""
+    with torch.no_grad():
+        rotated = bool((torch.remainder(rotation * 4.0, 1.0) != 0).any() or (rotation_random != 0).any())
+        if rotated:
+            rad = torch.sqrt(hx * hx + hy * hy)
+            ext_x, ext_y = rad * nx, rad * ny
+        else:
+            rot_q = torch.remainder(torch.round(rotation * 4.0), 2.0)  # quarter turns swap axes
+            ext_x = torch.where(rot_q == 1, hy, hx) * nx
+            ext_y = torch.where(rot_q == 1, hx, hy) * ny
+        jit = 0.5 * position_random.abs()
+        grow = 1.0 + 0.5 * softness.abs()
+        # (the half-pixel anti-aliasing spill of a neighbour is ignored)
+        rx, ry = ext_x * grow + jit, ext_y * grow + jit
+        # cells whose centre lies within reach: m per axis, starting at floor(x + 1/2 - m/2); a
+        # batch uses the largest window and masks each element to its own (same result as alone)
+        mxb = torch.ceil(2.0 * rx - 1e-6).clamp(1, min(5, nx))
+        myb = torch.ceil(2.0 * ry - 1e-6).clamp(1, min(5, ny))
+    return rotated, mxb, myb
+
+
+def _cell_values(nx, ny, rnd, pix, hx, hy, softness, position_random, scale_random, rotation, rotation_random,
+                 luminance_random, mask_random, spec, spec_random, cr, *, use_pos, use_scale, use_rot, use_lum,
+                 use_mask, use_spec) -> dict[str, torch.Tensor]:
+    """The per-cell quantities that vary between cells, each (B|1, ny * nx)."""
+    # per-cell derived quantities (B|1, ny * nx): every transcendental is evaluated once a cell, and
+    # a pixel gathers only what varies between cells
+
+    def pc(t):
+        return t.reshape(-1, 1)
+
+    cellv = {}
+    ex_c, ey_c = hx, hy
+    if use_scale:
+        sc = 1.0 - pc(scale_random) * rnd[RND_SCALE]
+        ex_c, ey_c = (pc(hx) * sc).clamp_min(1e-6), (pc(hy) * sc).clamp_min(1e-6)
+        cellv["ex"], cellv["ey"] = ex_c, ey_c
+        cellv["w"] = pix / torch.sqrt(ex_c * ey_c) + pc(softness)
+    if use_pos:
+        cellv["jx"] = pc(position_random) * (rnd[RND_PX] - 0.5) / nx
+        cellv["jy"] = pc(position_random) * (rnd[RND_PY] - 0.5) / ny
+    if use_rot:
+        ang = TAU * (pc(rotation) + pc(rotation_random) * (rnd[RND_ROT] - 0.5))
+        ca, sa = torch.cos(ang), torch.sin(ang)
+        iex = 1.0 / (ex_c if use_scale else pc(hx.clamp_min(1e-6)))
+        iey = 1.0 / (ey_c if use_scale else pc(hy.clamp_min(1e-6)))
+        cellv["a11"], cellv["a12"], cellv["a21"], cellv["a22"] = ca * iex, sa * iex, -sa * iey, ca * iey
+    if use_lum or use_mask:
+        fac: float | torch.Tensor = 1.0
+        if use_lum:
+            fac = 1.0 - pc(luminance_random) * rnd[RND_LUM]
+        if use_mask:
+            # soft mask: fully visible at mask_random = 0, fully hidden at mask_random = 1
+            fac = fac * smoothstep01((rnd[RND_MASK] - pc(mask_random) * 1.05) / 0.05 + 1.0)
+        cellv["fac"] = fac
+    if use_spec:
+        cellv["sp"] = (pc(spec) + pc(spec_random) * (rnd[RND_SPEC] - 0.5)).clamp(0.0, 1.0)
+    if cr is not None:
+        for name, k in (("r", RND_R), ("g", RND_G), ("b", RND_B)):
+            cellv[name] = 1.0 - pc(cr) * (1.0 - rnd[k])
+    return cellv
+
+
+@dataclass(frozen=True)
+class _CellShape:
+    """What evaluating a candidate cell's shape needs besides the cell's own values: the profile,
+    which per-cell quantities vary, and the fixed ones (half extents, pixel width, spec)."""
+
+    profile: Callable
+    size: int
+    nx: int
+    use_pos: bool
+    use_scale: bool
+    use_rot: bool
+    use_spec: bool
+    hx: torch.Tensor
+    hy: torch.Tensor
+    w: torch.Tensor
+    spec: torch.Tensor
+
+    def height(self, rows: dict, c: torch.Tensor, fx: torch.Tensor, fy: torch.Tensor):
+        """The shape of cell column ``c`` (``rows``: the row's cell values) at offsets (fx, fy)
+        from the cell centres; returns (height, the cell values gathered per pixel)."""
+        bsz, size = c.shape[0], self.size
+        vals = {}
+        if rows:
+            cidx = torch.remainder(c, self.nx).long().view(bsz, size, -1).expand(-1, -1, size)
+            for k, t in rows.items():
+                bk = max(bsz, t.shape[0])
+                vals[k] = torch.gather(t.expand(bk, -1, -1), 2, cidx.expand(bk, -1, -1)).unsqueeze(1)
+        dx, dy = fx, fy
+        if self.use_pos:
+            dx = dx - vals["jx"]
+            dy = dy - vals["jy"]
+        ex, ey = (vals["ex"], vals["ey"]) if self.use_scale else (self.hx, self.hy)
+        if self.use_rot:
+            lx = vals["a11"] * dx + vals["a12"] * dy
+            ly = vals["a21"] * dx + vals["a22"] * dy
+        else:
+            lx, ly = dx / ex, dy / ey
+        w = vals["w"] if self.use_scale else self.w
+        sp = vals["sp"] if self.use_spec else self.spec
+        h = self.profile(lx, ly, w, sp, ex, ey)
+        if "fac" in vals:
+            h = h * vals["fac"]
+        return h, vals
+
+
+def _keep_highest(best, color, h, vals):
+    """Overlapping shapes combine by maximum; the colour (``vals`` given) follows the highest."""
+    col = torch.cat([vals["r"], vals["g"], vals["b"]], dim=1) if vals is not None else None
+    if best is None:
+        if col is not None:
+            color = col.expand(h.shape[0], -1, -1, -1) if col.shape[0] < h.shape[0] else col
+        return h, color
+    if col is not None:
+        color = torch.where(h > best, col, color)
+    return torch.maximum(best, h), color
+
+
 def tile_field(size: int, nx: int, ny: int, *, seed: int, profile: Callable, scale=1.0, size_xy=(1.0, 1.0),
                interstice=(0.0, 0.0), offset=0.0, position_random=0.0, scale_random=0.0, rotation=0.0,
                rotation_random=0.0, luminance_random=0.0, mask_random=0.0, pattern_specific=0.5,
@@ -206,9 +349,9 @@ def tile_field(size: int, nx: int, ny: int, *, seed: int, profile: Callable, sca
     ``softness`` (local units, 1 = the half size) widens hard edges beyond the one-pixel
     anti-aliasing. ``profile(x, y, w, spec, ex, ey)`` gives the shape's height at local coordinates
     (the shape fills [-1, 1]²), ``w`` one pixel (plus softness) in local units, ``ex``/``ey`` the
-    half extents in texture units. Overlapping shapes combine by maximum. Returns ``(height, color)``: height (B, 1, H, W) and,
-    when ``color_random`` is given, the winning cell's random colour (B, 3, H, W) mixed towards
-    white by 1 - color_random, else None.
+    half extents in texture units. Overlapping shapes combine by maximum. Returns ``(height, color)``:
+    height (B, 1, H, W) and, when ``color_random`` is given, the winning cell's random colour
+    (B, 3, H, W) mixed towards white by 1 - color_random, else None.
 
     ``own_cell``: the caller's profile never increases away from the shape's centre along x or y
     (square, disc, bell…); then, when every cell has the same geometry (no position, scale,
@@ -237,34 +380,13 @@ def tile_field(size: int, nx: int, ny: int, *, seed: int, profile: Callable, sca
     hx = (0.5 / nx) * (1.0 - ix).clamp_min(0.0) * scale * sx
     hy = (0.5 / ny) * (1.0 - iy).clamp_min(0.0) * scale * sy
 
-    # neighbourhood needed: how far (in cells) a shape may reach from its cell centre
-    with torch.no_grad():
-        rotated = bool((torch.remainder(rotation * 4.0, 1.0) != 0).any() or (rotation_random != 0).any())
-        if rotated:
-            rad = torch.sqrt(hx * hx + hy * hy)
-            ext_x, ext_y = rad * nx, rad * ny
-        else:
-            rot_q = torch.remainder(torch.round(rotation * 4.0), 2.0)  # quarter turns swap axes
-            ext_x = torch.where(rot_q == 1, hy, hx) * nx
-            ext_y = torch.where(rot_q == 1, hx, hy) * ny
-        jit = 0.5 * position_random.abs()
-        grow = 1.0 + 0.5 * softness.abs()
-        # (the half-pixel anti-aliasing spill of a neighbour is ignored)
-        rx, ry = ext_x * grow + jit, ext_y * grow + jit
-        # cells whose centre lies within reach: m per axis, starting at floor(x + 1/2 - m/2); a
-        # batch uses the largest window and masks each element to its own (same result as alone)
-        mxb = torch.ceil(2.0 * rx - 1e-6).clamp(1, min(5, nx))
-        myb = torch.ceil(2.0 * ry - 1e-6).clamp(1, min(5, ny))
+    rotated, mxb, myb = _tile_reach(nx, ny, hx, hy, rotation, rotation_random, position_random, softness)
     mx, my = int(mxb.max()), int(myb.max())
     per_element = bool((mxb != mx).any() or (myb != my).any())
-
-    def active(t):
-        return t.requires_grad or bool((t != 0).any())
-
-    use_pos, use_scale = active(position_random), active(scale_random)
-    use_rot = active(rotation) or active(rotation_random)
-    use_lum, use_mask, use_spec = active(luminance_random), active(mask_random), active(spec_random)
-    if own_cell and not (rotated or use_pos or use_scale or use_mask or use_spec or active(rotation_random)):
+    use_pos, use_scale = _active(position_random), _active(scale_random)
+    use_rot = _active(rotation) or _active(rotation_random)
+    use_lum, use_mask, use_spec = _active(luminance_random), _active(mask_random), _active(spec_random)
+    if own_cell and not (rotated or use_pos or use_scale or use_mask or use_spec or _active(rotation_random)):
         mx, my, per_element = 1, 1, False
 
     # separable coordinates: rows depend on v only, so row quantities are (.., H, 1)
@@ -272,43 +394,14 @@ def tile_field(size: int, nx: int, ny: int, *, seed: int, profile: Callable, sca
     Y = (ucoord * ny).view(1, 1, size, 1)   # (1, 1, H, 1)
     row0 = torch.floor(Y + 0.5 - 0.5 * my)
     pix = 1.0 / size
-    # per-cell derived quantities (B|1, ny * nx): every transcendental is evaluated once a cell, and
-    # a pixel gathers only what varies between cells
-    def pc(t):
-        return t.reshape(-1, 1)
-
-    cellv = {}
-    ex_c, ey_c = hx, hy
-    if use_scale:
-        sc = 1.0 - pc(scale_random) * rnd[RND_SCALE]
-        ex_c, ey_c = (pc(hx) * sc).clamp_min(1e-6), (pc(hy) * sc).clamp_min(1e-6)
-        cellv["ex"], cellv["ey"] = ex_c, ey_c
-        cellv["w"] = pix / torch.sqrt(ex_c * ey_c) + pc(softness)
-    if use_pos:
-        cellv["jx"] = pc(position_random) * (rnd[RND_PX] - 0.5) / nx
-        cellv["jy"] = pc(position_random) * (rnd[RND_PY] - 0.5) / ny
-    if use_rot:
-        ang = TAU * (pc(rotation) + pc(rotation_random) * (rnd[RND_ROT] - 0.5))
-        ca, sa = torch.cos(ang), torch.sin(ang)
-        iex = 1.0 / (ex_c if use_scale else pc(hx.clamp_min(1e-6)))
-        iey = 1.0 / (ey_c if use_scale else pc(hy.clamp_min(1e-6)))
-        cellv["a11"], cellv["a12"], cellv["a21"], cellv["a22"] = ca * iex, sa * iex, -sa * iey, ca * iey
-    if use_lum or use_mask:
-        fac = 1.0
-        if use_lum:
-            fac = 1.0 - pc(luminance_random) * rnd[RND_LUM]
-        if use_mask:
-            # soft mask: fully visible at mask_random = 0, fully hidden at mask_random = 1
-            fac = fac * smoothstep01((rnd[RND_MASK] - pc(mask_random) * 1.05) / 0.05 + 1.0)
-        cellv["fac"] = fac
-    if use_spec:
-        cellv["sp"] = (pc(spec) + pc(spec_random) * (rnd[RND_SPEC] - 0.5)).clamp(0.0, 1.0)
-    if cr is not None:
-        for name, k in (("r", RND_R), ("g", RND_G), ("b", RND_B)):
-            cellv[name] = 1.0 - pc(cr) * (1.0 - rnd[k])
+    cellv = _cell_values(nx, ny, rnd, pix, hx, hy, softness, position_random, scale_random, rotation,
+                         rotation_random, luminance_random, mask_random, spec, spec_random, cr,
+                         use_pos=use_pos, use_scale=use_scale, use_rot=use_rot, use_lum=use_lum,
+                         use_mask=use_mask, use_spec=use_spec)
     cellv = {k: v.reshape(v.shape[0], ny, nx) for k, v in cellv.items()}
     hx_e, hy_e = hx.clamp_min(1e-6), hy.clamp_min(1e-6)
-    w_fixed = pix / torch.sqrt(hx_e * hy_e) + softness
+    shape = _CellShape(profile, size, nx, use_pos, use_scale, use_rot, use_spec, hx_e, hy_e,
+                       pix / torch.sqrt(hx_e * hy_e) + softness, spec)
     best = None
     color = None
     for dj in range(my):
@@ -326,42 +419,13 @@ def tile_field(size: int, nx: int, ny: int, *, seed: int, profile: Callable, sca
         for di in range(mx):
             c = c0 + di
             fx = (xs - c - 0.5) / nx  # (B|1, 1, H, W)
-            bsz = c.shape[0]
-            vals = {}
-            if rows:
-                cidx = torch.remainder(c, nx).long().view(bsz, size, -1).expand(-1, -1, size)
-                for k, t in rows.items():
-                    bk = max(bsz, t.shape[0])
-                    vals[k] = torch.gather(t.expand(bk, -1, -1), 2, cidx.expand(bk, -1, -1)).unsqueeze(1)
-            dx, dy = fx, fy
-            if use_pos:
-                dx = dx - vals["jx"]
-                dy = dy - vals["jy"]
-            ex, ey = (vals["ex"], vals["ey"]) if use_scale else (hx_e, hy_e)
-            if use_rot:
-                lx = vals["a11"] * dx + vals["a12"] * dy
-                ly = vals["a21"] * dx + vals["a22"] * dy
-            else:
-                lx, ly = dx / ex, dy / ey
-            w = vals["w"] if use_scale else w_fixed
-            sp = vals["sp"] if use_spec else spec
-            h = profile(lx, ly, w, sp, ex, ey)
-            if "fac" in vals:
-                h = h * vals["fac"]
+            h, vals = shape.height(rows, c, fx, fy)
             if per_element:
                 h = h * (keep_r & (c >= c_lo) & (c < c_lo + mxb))
             if h.shape[-2:] != (size, size):
                 h = h.expand(-1, -1, size, size)
-            if cr is not None:
-                col = torch.cat([vals["r"], vals["g"], vals["b"]], dim=1)
-            if best is None:
-                best = h
-                if cr is not None:
-                    color = col.expand(h.shape[0], -1, -1, -1) if col.shape[0] < h.shape[0] else col
-            else:
-                if cr is not None:
-                    color = torch.where(h > best, col, color)
-                best = torch.maximum(best, h)
+            best, color = _keep_highest(best, color, h, vals if cr is not None else None)
+    assert best is not None  # the windows mx, my are at least 1
     return best.clamp(0.0, 1.0), color
 
 
@@ -588,12 +652,13 @@ def creased(*, scale: int = 4, disorder=0.0, folds: int = 12, size: int = 512, s
     speed = torch.rand(folds, generator=g) * 2.0 - 1.0
     u, v = pixel_grid(size, device, dtype)
     dis = param4d(disorder, ref)
-    acc = 0.0
+    acc: float | torch.Tensor = 0.0
     for k in range(folds):
         t = u * float(dirs[k, 0]) + v * float(dirs[k, 1]) + float(phase[k]) + dis * float(speed[k])
         tri = (2.0 * torch.remainder(t, 1.0) - 1.0).abs()  # triangle wave in [0, 1], sharp ridges
         acc = acc + float(amp[k]) * tri
     total = float(amp.sum())
     out = acc / total
+    assert isinstance(out, torch.Tensor)  # folds >= 1
     # spread the (roughly Gaussian) sum around its mean 0.5 to use the whole range
     return (0.5 + (out - 0.5) * 2.5).clamp(0.0, 1.0)

@@ -11,8 +11,18 @@ import torch
 import torch.nn.functional as F
 
 from .common import param4d, pixel_grid, to_gray
-from .pattern_shapes import (SHAPES, TAU, aa_coverage, check_enum, check_int, lattice_random, ref_tensor,
-                             safe_sqrt, shape_profile, tile_field)
+from .pattern_shapes import (
+    SHAPES,
+    TAU,
+    aa_coverage,
+    check_enum,
+    check_int,
+    lattice_random,
+    ref_tensor,
+    safe_sqrt,
+    shape_profile,
+    tile_field,
+)
 
 __all__ = ["tile_pattern", "tile_pattern_color", "tile_sampler_pattern", "brick_pattern", "checker_pattern",
            "parquet_pattern", "weave_pattern", "mesh_pattern", "circular_splatter"]
@@ -54,6 +64,22 @@ def _pattern_profile(pattern: int, image, where: str):
     return lambda x, y, w, s, ex=None, ey=None: shape_profile(name, x, y, w, s)
 
 
+# the arguments of the Tile Generator family that ``tile_field`` takes as they are
+_TILE_FIELD_ARGS = ("scale", "size_xy", "interstice", "offset", "position_random", "scale_random", "rotation",
+                    "rotation_random", "luminance_random", "mask_random", "pattern_specific", "softness",
+                    "color_random", "seed", "device", "dtype")
+
+
+def _tile_generator(where: str, image, args: dict):
+    """The layout of a Tile Generator family node: its grid and pattern checked, then ``tile_field``
+    with the node's arguments ``args`` (its ``locals()``) that ``tile_field`` takes."""
+    nx = check_int(args["x_amount"], f"{where}.x_amount", 1, 256)
+    ny = check_int(args["y_amount"], f"{where}.y_amount", 1, 256)
+    profile = _pattern_profile(args["pattern"], image, where)
+    field = {k: args[k] for k in _TILE_FIELD_ARGS if k in args}
+    return tile_field(args["size"], nx, ny, profile=profile, own_cell=_monotone(args["pattern"]), **field)
+
+
 def tile_pattern(pattern_input_1=None, *, x_amount: int = 10, y_amount: int = 10, pattern: int = 1,
                  pattern_specific=0.5, scale=1.0, size_xy=(1.0, 1.0), interstice=(0.0, 0.0), offset=0.0,
                  position_random=0.0, scale_random=0.0, rotation=0.0, rotation_random=0.0, luminance_random=0.0,
@@ -62,15 +88,7 @@ def tile_pattern(pattern_input_1=None, *, x_amount: int = 10, y_amount: int = 10
     """Tile Generator: an ``x_amount`` × ``y_amount`` grid of one pattern (``TILE_PATTERNS``;
     0 reads ``pattern_input_1``), every alternate row offset by ``offset`` cells, with per-tile
     random position, scale, rotation, luminance and masking (see ``tile_field``)."""
-    nx = check_int(x_amount, "tile_generator.x_amount", 1, 256)
-    ny = check_int(y_amount, "tile_generator.y_amount", 1, 256)
-    profile = _pattern_profile(pattern, pattern_input_1, "tile_generator")
-    out, _ = tile_field(size, nx, ny, seed=seed, profile=profile, scale=scale, size_xy=size_xy,
-                        interstice=interstice, offset=offset, position_random=position_random,
-                        scale_random=scale_random, rotation=rotation, rotation_random=rotation_random,
-                        luminance_random=luminance_random, mask_random=mask_random,
-                        pattern_specific=pattern_specific, softness=softness, own_cell=_monotone(pattern),
-                        device=device, dtype=dtype)
+    out, _ = _tile_generator("tile_generator", pattern_input_1, locals())
     return out
 
 
@@ -83,15 +101,7 @@ def tile_pattern_color(pattern_input_1=None, *, x_amount: int = 10, y_amount: in
     """Tile Generator Color: the tile layout of ``tile_pattern``; each tile takes
     ``pattern_color`` × a random colour (mixed in by ``color_random``) × its height, over
     ``background_color``. RGBA, opaque."""
-    nx = check_int(x_amount, "tile_generator_color.x_amount", 1, 256)
-    ny = check_int(y_amount, "tile_generator_color.y_amount", 1, 256)
-    profile = _pattern_profile(pattern, pattern_input_1, "tile_generator_color")
-    h, col = tile_field(size, nx, ny, seed=seed, profile=profile, scale=scale, size_xy=size_xy,
-                        interstice=interstice, offset=offset, position_random=position_random,
-                        scale_random=scale_random, rotation=rotation, rotation_random=rotation_random,
-                        luminance_random=luminance_random, mask_random=mask_random,
-                        pattern_specific=pattern_specific, softness=softness, color_random=color_random,
-                        own_cell=_monotone(pattern), device=device, dtype=dtype)
+    h, col = _tile_generator("tile_generator_color", pattern_input_1, locals())
     ref = ref_tensor(device, dtype)
     fg = param4d(pattern_color, ref)[:, :3] * col
     bg = param4d(background_color, ref)[:, :3]
@@ -105,13 +115,7 @@ def tile_sampler_pattern(pattern_input=None, *, x_amount: int = 16, y_amount: in
                          size: int = 512, seed: int = 0, device=None, dtype=torch.float32) -> torch.Tensor:
     """Tile Sampler (simplified): the Tile Generator layout with the Tile Sampler's parameters
     (no map inputs, no vector/colour outputs)."""
-    nx = check_int(x_amount, "tile_sampler.x_amount", 1, 256)
-    ny = check_int(y_amount, "tile_sampler.y_amount", 1, 256)
-    profile = _pattern_profile(pattern, pattern_input, "tile_sampler")
-    out, _ = tile_field(size, nx, ny, seed=seed, profile=profile, scale=scale, size_xy=size_xy,
-                        offset=offset, position_random=position_random, scale_random=scale_random,
-                        rotation=rotation, rotation_random=rotation_random, luminance_random=luminance_random,
-                        mask_random=mask_random, own_cell=_monotone(pattern), device=device, dtype=dtype)
+    out, _ = _tile_generator("tile_sampler", pattern_input, locals())
     return out
 
 
@@ -279,4 +283,5 @@ def circular_splatter(*, pattern: int = 2, pattern_amount: int = 8, radius=0.3, 
                 h = shape_profile(name, lx, ly, (1.0 / size) / s, spec)
                 h = h * (1.0 - luminance_random * rnd[1][idx])
                 out = h if out is None else torch.maximum(out, h)
+    assert out is not None  # the loops above always run
     return out.clamp(0.0, 1.0)

@@ -1,5 +1,6 @@
 """Pixel Processor and Value Processor: Substance's programmable nodes, evaluated through the
-function-graph evaluator (``function_graph.py``).
+function-graph evaluator (``function_graph.py``); each function graph is compiled once per
+JSON text (``function_graph.compiled``).
 
 - ``pixel_processor`` runs a function graph once per pixel: ``$pos`` is the pixel centre in [0, 1)²,
   ``samplelum``/``samplecol`` read the node's inputs (index 0 = ``input``, 1 = ``input_1``, ...)
@@ -19,7 +20,7 @@ import math
 import torch
 
 from ..errors import DiffMatError
-from .function_graph import evaluate, loads
+from .function_graph import compiled
 
 __all__ = ["pixel_processor", "value_processor", "DEFAULT_PERPIXEL", "DEFAULT_VALUE_FUNCTION"]
 
@@ -53,7 +54,7 @@ def _to_channels(v: torch.Tensor, color: bool) -> torch.Tensor:
 def pixel_processor(*images, perpixel: str = DEFAULT_PERPIXEL, colorswitch: bool = True, size: int = 512,
                     seed: int = 0, device=None, dtype=torch.float32) -> torch.Tensor:
     """Evaluate the function graph ``perpixel`` (JSON text) at every pixel; returns (N, 1|4, H, W)."""
-    graph = loads(perpixel)
+    evaluate = compiled(perpixel)
     connected = [im for im in images if im is not None]
     if connected:
         h, w = connected[0].shape[-2:]
@@ -65,7 +66,7 @@ def pixel_processor(*images, perpixel: str = DEFAULT_PERPIXEL, colorswitch: bool
     y, x = torch.meshgrid(cy, cx, indexing="ij")
     variables = _system_variables(h, w, device, dtype)
     variables["$pos"] = torch.stack([x, y], dim=-1)[None]  # (1, H, W, 2)
-    value = evaluate(graph, variables, images=list(images), seed=seed, device=device, dtype=dtype)
+    value = evaluate(variables, images=list(images), seed=seed, device=device, dtype=dtype)
     if isinstance(value, str):
         raise DiffMatError("pixelprocessor: the function returns a string")
     value = _to_channels(value, bool(colorswitch))
@@ -78,8 +79,8 @@ def pixel_processor(*images, perpixel: str = DEFAULT_PERPIXEL, colorswitch: bool
 def value_processor(*, function: str = DEFAULT_VALUE_FUNCTION, size: int = 512, seed: int = 0, device=None,
                     dtype=torch.float32) -> torch.Tensor:
     """Evaluate ``function`` (JSON text) once; returns a uniform (B|1, 1|4, size, size) image of it."""
-    graph = loads(function)
-    value = evaluate(graph, _system_variables(size, size, device, dtype), seed=seed, device=device, dtype=dtype)
+    evaluate = compiled(function)
+    value = evaluate(_system_variables(size, size, device, dtype), seed=seed, device=device, dtype=dtype)
     if isinstance(value, str):
         raise DiffMatError("valueprocessor: the function returns a string")
     value = value.reshape(-1, value.shape[-1]) if value.dim() > 1 else value[None]

@@ -40,7 +40,8 @@ def height_to_normal(input1: torch.Tensor, *, intensity=1.0, inversedy: bool = F
     s = _scalar(intensity, h, "normal.intensity") / REFERENCE_SIZE
     dx, dv = gradient_wrap(h)
     if (not torch.is_grad_enabled() or not (h.requires_grad or s.requires_grad)) and s.shape[0] <= h.shape[0]:
-        with torch.no_grad():   # the same arithmetic, in place, written into one RGBA buffer
+        # no-grad twin: the same arithmetic, in place, into one RGBA buffer (docs/engine.md, "No-grad twins")
+        with torch.no_grad():
             nx = dx.mul_(-s)
             ny = dv.mul_(s)
             if not inversedy:

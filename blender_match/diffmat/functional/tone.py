@@ -12,7 +12,7 @@ import math
 import torch
 
 from ..errors import DiffMatError
-from .common import COLOR, GRAY, _step, check_choice, check_image, param2d, param4d, to_color
+from .common import COLOR, GRAY, check_choice, check_image, param2d, param4d, step, to_color
 
 __all__ = ["levels", "curve", "hsl", "grayscale_conversion", "channel_shuffle"]
 
@@ -65,7 +65,7 @@ def _gamma_positive(t: torch.Tensor, gamma: torch.Tensor) -> torch.Tensor:
     """t^gamma where t > 0, t elsewhere; exp(gamma log t) and arithmetic masks instead of ``pow``
     with a tensor exponent and ``where`` (both slow on CPU, forward and backward)."""
     y = torch.exp(torch.log(t.clamp_min(1e-12)) * gamma)
-    positive = 1.0 - _step(-t)
+    positive = 1.0 - step(-t)
     return torch.addcmul(t, positive, y - t)
 
 
@@ -99,25 +99,25 @@ def _lut_lookup(lut: torch.Tensor, x: torch.Tensor) -> torch.Tensor:
 
 def _curve_table(positions, lefts, rights, like: torch.Tensor) -> torch.Tensor:
     """Sample the Bézier curve on a uniform grid of x in [0, 1]: (B, _CURVE_LUT)."""
-    p, l, r = (param2d(v, like) for v in (positions, lefts, rights))
-    for name, t in (("positions", p), ("lefts", l), ("rights", r)):
+    p, left, right = (param2d(v, like) for v in (positions, lefts, rights))
+    for name, t in (("positions", p), ("lefts", left), ("rights", right)):
         if t.shape[1] < 2 or t.shape[1] % 2:
             raise DiffMatError(f"curve.{name}: expected x, y pairs, got {t.shape[1]} values")
     k = p.shape[1] // 2
-    if l.shape[1] // 2 != k or r.shape[1] // 2 != k:
-        raise DiffMatError(f"curve: {k} points but {l.shape[1] // 2} left and {r.shape[1] // 2} right handles")
-    b = max(p.shape[0], l.shape[0], r.shape[0])
-    p, l, r = (t.expand(b, -1).reshape(b, k, 2) for t in (p, l, r))
+    if left.shape[1] // 2 != k or right.shape[1] // 2 != k:
+        raise DiffMatError(f"curve: {k} points but {left.shape[1] // 2} left and {right.shape[1] // 2} right handles")
+    b = max(p.shape[0], left.shape[0], right.shape[0])
+    p, left, right = (t.expand(b, -1).reshape(b, k, 2) for t in (p, left, right))
     order = torch.argsort(p[..., 0].detach(), dim=1)[..., None].expand(-1, -1, 2)
-    p, l, r = (torch.gather(t, 1, order) for t in (p, l, r))
+    p, left, right = (torch.gather(t, 1, order) for t in (p, left, right))
     if k == 1:
         return p[:, :, 1].expand(-1, _CURVE_LUT)
     p0, p3 = p[:, :-1], p[:, 1:]                            # segment ends (B, k-1, 2)
     x0, x3 = p0[..., 0], p3[..., 0]
     # handles: the right handle of the start point and the left handle of the end point, their x
     # kept inside the segment so that x(s) is monotonic and y(x) is a function.
-    c1 = torch.stack([torch.minimum(torch.maximum(r[:, :-1, 0], x0), x3), r[:, :-1, 1]], dim=-1)
-    c2 = torch.stack([torch.minimum(torch.maximum(l[:, 1:, 0], x0), x3), l[:, 1:, 1]], dim=-1)
+    c1 = torch.stack([torch.minimum(torch.maximum(right[:, :-1, 0], x0), x3), right[:, :-1, 1]], dim=-1)
+    c2 = torch.stack([torch.minimum(torch.maximum(left[:, 1:, 0], x0), x3), left[:, 1:, 1]], dim=-1)
     s = torch.linspace(0.0, 1.0, _CURVE_SAMPLES, device=like.device, dtype=like.dtype)[:, None]
     bern = torch.stack([(1 - s) ** 3, 3 * s * (1 - s) ** 2, 3 * s ** 2 * (1 - s), s ** 3])  # (4, S, 1)
     ctrl = torch.stack([p0, c1, c2, p3])[:, :, :, None, :]                                  # (4, B, k-1, 1, 2)
@@ -166,17 +166,17 @@ def _rgb_to_hsl(rgb: torch.Tensor):
     d = mx - mn
     s2 = mx + mn                                   # 2 l
     light = s2 * 0.5
-    colour = _step(d - 1e-7)                       # 0 on grays (d < 1e-7)
+    colour = step(d - 1e-7)                       # 0 on grays (d < 1e-7)
     inv = 1.0 / (d + (1.0 - colour))               # 1 / d, or 1 on grays (no division by 0)
     # saturation d / (1 - |2 l - 1|)
     sat = (d / (1.0 - (s2 - 1.0).abs()).clamp_min(1e-7)).clamp(0.0, 1.0) * colour
     # hue sector by the largest channel (r first, then g, then b, as a chain of where)
     with torch.no_grad():
-        is_r = _step(r - mx)
-        is_g = (1.0 - is_r) * _step(g - mx)
+        is_r = step(r - mx)
+        is_g = (1.0 - is_r) * step(g - mx)
         is_b = 1.0 - is_r - is_g
     hr = (g - b) * inv
-    hr = hr + 6.0 * (1.0 - _step(hr))              # remainder(hr, 6) for hr in [-1, 1]
+    hr = hr + 6.0 * (1.0 - step(hr))              # remainder(hr, 6) for hr in [-1, 1]
     # sectors: hr, (b - r)/d + 2, (r - g)/d + 4; the offsets 2 and 4 folded into one mask term
     hue = hr * is_r + ((b - r) * is_g + (r - g) * is_b) * inv + (2.0 * is_g + 4.0 * is_b)
     return hue * (colour * (1.0 / 6.0)), sat, light
@@ -216,21 +216,22 @@ def hsl(input1: torch.Tensor, *, hue=0.5, saturation=0.5, luminosity=0.5) -> tor
                                               or dl.requires_grad)) \
             and max(dh.shape[0], ds.shape[0], dl.shape[0]) <= x.shape[0]:
         return _hsl_nograd(x, dh, ds, dl)
-    h, s, l = _rgb_to_hsl(x[:, :3])
+    h, s, light = _rgb_to_hsl(x[:, :3])
     h = h + dh - 0.5
     # ds <= 0: s (1 + ds); above: s (1 + (1 - s) ds). dl <= 0: l (1 + dl); above: l + (1 - l) dl.
     # The branch is chosen per batch item (a (B, 1, 1, 1) mask), not per pixel.
     up_s = (ds > 0).to(ds.dtype)
     up_l = (dl > 0).to(dl.dtype)
     s = (s * (1 + ds * (1 - s * up_s))).clamp(0.0, 1.0)
-    l = (l + dl * (l + up_l * (1 - 2 * l))).clamp(0.0, 1.0)
-    rgb = _hsl_to_rgb(h, s, l).clamp(0.0, 1.0)
+    light = (light + dl * (light + up_l * (1 - 2 * light))).clamp(0.0, 1.0)
+    rgb = _hsl_to_rgb(h, s, light).clamp(0.0, 1.0)
     return torch.cat([rgb, x[:, 3:].expand(rgb.shape[0], -1, -1, -1)], dim=1)
 
 
 def _hsl_nograd(x, dh, ds, dl):
     """``hsl`` without autograd: the same arithmetic as ``_rgb_to_hsl`` / ``hsl`` /
-    ``_hsl_to_rgb``, op for op, on in-place temporaries, written straight into the output."""
+    ``_hsl_to_rgb``, op for op, on in-place temporaries, written straight into the output. What
+    it saves: docs/engine.md, "No-grad twins"."""
     with torch.no_grad():
         rgb = x[:, :3]
         r, g, b = rgb[:, 0:1], rgb[:, 1:2], rgb[:, 2:3]
@@ -239,18 +240,18 @@ def _hsl_nograd(x, dh, ds, dl):
         d = mx - mn
         s2 = mn.add_(mx)                                   # 2 l (mx + mn)
         light = s2 * 0.5
-        colour = _step(d - 1e-7)
+        colour = step(d - 1e-7)
         inv = (1.0 - colour).add_(d).reciprocal_()
         t = (s2 - 1.0).abs_().neg_().add_(1.0).clamp_min_(1e-7)
         sat = d.div_(t).clamp_(0.0, 1.0).mul_(colour)
         del t, s2
-        is_r = _step(r - mx)
+        is_r = step(r - mx)
         not_r = (1.0 - is_r)
-        is_g = _step(g - mx).mul_(not_r)
+        is_g = step(g - mx).mul_(not_r)
         is_b = not_r.sub_(is_g)
         del mx, not_r
         hr = (g - b).mul_(inv)
-        hr.add_(_step(hr).neg_().add_(1.0).mul_(6.0))
+        hr.add_(step(hr).neg_().add_(1.0).mul_(6.0))
         hue = hr.mul_(is_r)
         del is_r
         t = (b - r).mul_(is_g)
@@ -265,10 +266,9 @@ def _hsl_nograd(x, dh, ds, dl):
         up_s = (ds > 0).to(ds.dtype)
         up_l = (dl > 0).to(dl.dtype)
         s = sat.mul_((sat * up_s).neg_().add_(1.0).mul_(ds).add_(1.0)).clamp_(0.0, 1.0)
-        l = light
-        l.add_((l * 2).neg_().add_(1.0).mul_(up_l).add_(l).mul_(dl)).clamp_(0.0, 1.0)
+        light.add_((light * 2).neg_().add_(1.0).mul_(up_l).add_(light).mul_(dl)).clamp_(0.0, 1.0)
         # back to RGB (_hsl_to_rgb)
-        a = torch.minimum(l, 1 - l).mul_(s)
+        a = torch.minimum(light, 1 - light).mul_(s)
         key = (h.device, h.dtype)
         off = _HSL_OFFSETS.get(key)
         if off is None:
@@ -278,7 +278,7 @@ def _hsl_nograd(x, dh, ds, dl):
         m = torch.minimum(k - 3, k.neg_().add_(9.0)).clamp_(-1.0, 1.0)
         n = h.shape[0]
         out = torch.empty((n, 4) + tuple(x.shape[-2:]), dtype=x.dtype, device=x.device)
-        torch.addcmul(l, a, m, value=-1.0, out=out[:, :3])
+        torch.addcmul(light, a, m, value=-1.0, out=out[:, :3])
         out[:, :3].clamp_(0.0, 1.0)
         out[:, 3:] = x[:, 3:]
         return out
@@ -321,6 +321,7 @@ def channel_shuffle(input1: torch.Tensor, input2: torch.Tensor | None = None, *,
         if idx >= 4 and b is None:
             raise DiffMatError(f"shuffle.{name}: reads input2 (value {idx}) but input2 is not connected")
         src = a if idx < 4 else b
+        assert src is not None  # checked just above
         chans.append(src[:, idx % 4:idx % 4 + 1])
     n = max(c.shape[0] for c in chans)
     return torch.cat([c.expand(n, -1, -1, -1) for c in chans], dim=1)

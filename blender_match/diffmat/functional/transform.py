@@ -26,20 +26,12 @@ import torch
 import torch.nn.functional as F
 
 from ..errors import DiffMatError
-from .common import check_image, param2d, sample_wrap
+from .common import check_image, image_grid, param2d, sample_wrap
 
 __all__ = ["transformation_2d"]
 
 FILTERING = {0: "bilinear", 1: "nearest"}
 MIPMAPMODES = (0, 1)
-
-
-def _grid(like: torch.Tensor):
-    h, w = like.shape[-2:]
-    cu = (torch.arange(w, device=like.device, dtype=like.dtype) + 0.5) / w
-    cv = (torch.arange(h, device=like.device, dtype=like.dtype) + 0.5) / h
-    v, u = torch.meshgrid(cv, cu, indexing="ij")
-    return u[None, None], v[None, None]
 
 
 def transformation_2d(input1: torch.Tensor, *, matrix22=(1.0, 0.0, 0.0, 1.0), offset=(0.0, 0.0),
@@ -54,7 +46,8 @@ def transformation_2d(input1: torch.Tensor, *, matrix22=(1.0, 0.0, 0.0, 1.0), of
     if filtering not in FILTERING:
         raise DiffMatError(f"transformation.filtering: unknown value {filtering!r}; expected one of {list(FILTERING)}")
     if mipmapmode not in MIPMAPMODES:
-        raise DiffMatError(f"transformation.mipmapmode: unknown value {mipmapmode!r}; expected one of {list(MIPMAPMODES)}")
+        raise DiffMatError(f"transformation.mipmapmode: unknown value {mipmapmode!r}; "
+                           f"expected one of {list(MIPMAPMODES)}")
     m = param2d(matrix22, input1)
     o = param2d(offset, input1)
     if m.shape[1] != 4:
@@ -64,7 +57,7 @@ def transformation_2d(input1: torch.Tensor, *, matrix22=(1.0, 0.0, 0.0, 1.0), of
     b = max(m.shape[0], o.shape[0])
     m, o = m.expand(b, 4), o.expand(b, 2)
     e = [m[:, i].reshape(b, 1, 1, 1) for i in range(4)]
-    u, v = _grid(input1)
+    u, v = image_grid(input1)
     du = u - 0.5 - o[:, 0].reshape(b, 1, 1, 1)
     dv = v - 0.5 - o[:, 1].reshape(b, 1, 1, 1)
     su = e[0] * du + e[1] * dv + 0.5
@@ -95,4 +88,5 @@ def transformation_2d(input1: torch.Tensor, *, matrix22=(1.0, 0.0, 0.0, 1.0), of
         weight = torch.clamp(1.0 - (level - k).abs(), min=0.0).reshape(b, 1, 1, 1)
         sample = sample_wrap(img, su, sv, mode=mode)
         out = sample * weight if out is None else out + sample * weight
+    assert out is not None  # level >= 0, so lo <= hi and the loop samples at least once
     return out

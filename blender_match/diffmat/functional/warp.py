@@ -12,7 +12,7 @@ import math
 import torch
 
 from ..errors import DiffMatError
-from .common import check_image, gradient_wrap, param4d, sample_wrap
+from .common import check_image, gradient_wrap, image_grid, param4d, sample_wrap
 
 __all__ = ["warp", "directional_warp"]
 
@@ -23,16 +23,8 @@ def _on_grid(img: torch.Tensor, like: torch.Tensor) -> torch.Tensor:
     """``img`` resampled (wrap-around, bilinear) to ``like``'s size when the sizes differ."""
     if img.shape[-2:] == like.shape[-2:]:
         return img
-    u, v = _grid(like)
+    u, v = image_grid(like)
     return sample_wrap(img, u.expand(img.shape[0], -1, -1, -1), v.expand(img.shape[0], -1, -1, -1))
-
-
-def _grid(like: torch.Tensor):
-    h, w = like.shape[-2:]
-    cu = (torch.arange(w, device=like.device, dtype=like.dtype) + 0.5) / w
-    cv = (torch.arange(h, device=like.device, dtype=like.dtype) + 0.5) / h
-    v, u = torch.meshgrid(cv, cu, indexing="ij")
-    return u[None, None], v[None, None]
 
 
 def _scalar(value, like: torch.Tensor, where: str) -> torch.Tensor:
@@ -55,7 +47,7 @@ def warp(input1: torch.Tensor, inputgradient: torch.Tensor, *, intensity=1.0) ->
     g = _on_grid(inputgradient, input1)
     k = _scalar(intensity, input1, "warp.intensity") / REF
     dx, dy = gradient_wrap(g)
-    u, v = _grid(input1)
+    u, v = image_grid(input1)
     return sample_wrap(input1, u + k * dx, v + k * dy)
 
 
@@ -70,6 +62,6 @@ def directional_warp(input1: torch.Tensor, inputintensity: torch.Tensor, *, inte
     m = _on_grid(inputintensity, input1)
     k = _scalar(intensity, input1, "directionalwarp.intensity") / REF
     a = _scalar(warpangle, input1, "directionalwarp.warpangle") * (2 * math.pi)
-    u, v = _grid(input1)
+    u, v = image_grid(input1)
     d = k * m
     return sample_wrap(input1, u - d * torch.cos(a), v - d * torch.sin(a))

@@ -146,8 +146,8 @@ class Node(ParameterSet):
         spec = self.spec
         if len(images) > len(spec.inputs):
             raise DiffMatError(f"{spec.name}: takes {len(spec.inputs)} image input(s), got {len(images)}")
-        images = list(images) + [None] * (len(spec.inputs) - len(images))
-        for slot, img in zip(spec.inputs, images):
+        padded = list(images) + [None] * (len(spec.inputs) - len(images))
+        for slot, img in zip(spec.inputs, padded):
             if img is None:
                 if not slot.optional:
                     raise DiffMatError(f"{spec.name}: input {slot.name!r} is not connected")
@@ -160,7 +160,7 @@ class Node(ParameterSet):
         context = {"size": check_size(ctx.size), "seed": ctx.seed + self.seed,
                    "device": ctx.device, "dtype": ctx.dtype}
         kwargs.update({k: context[k] for k in spec.context})
-        return spec.fn(*images, **kwargs)
+        return spec.fn(*padded, **kwargs)
 
     def extra_repr(self) -> str:
         return self.spec.name

@@ -24,10 +24,20 @@ Exposed parameters
 """
 from __future__ import annotations
 
-from blender_match.library.authoring import ADD_SUB, COPY, MAX, MULTIPLY, OVERLAY, SOFT_LIGHT, SUBTRACT, constant_map, gradient_keys, set_material_outputs
+from blender_match.library.authoring import (
+    ADD_SUB,
+    COPY,
+    MAX,
+    MULTIPLY,
+    OVERLAY,
+    SOFT_LIGHT,
+    SUBTRACT,
+    constant_map,
+    gradient_keys,
+    set_material_outputs,
+)
 from blender_match.library.expressions import get, lerp, vector
 from blender_match.translator.runtime import SbsGraph
-
 
 
 def build() -> SbsGraph:
@@ -100,7 +110,8 @@ def build() -> SbsGraph:
     g.add("brick_mask", "histogram_scan", {"input_1": "brick_soft"}, position=0.85, contrast=0.6)
     g.add("wall", "blend", {"source": "brick_speckled", "destination": "mortar_speckled",
                             "opacity": "brick_mask"}, blendingmode=COPY, opacitymult=1.0)
-    g.add("ao_color", "gradient", {"input1": "ao"}, **gradient_keys([(0.0, (0.15, 0.15, 0.15)), (1.0, (1.0, 1.0, 1.0))]))
+    g.add("ao_color", "gradient", {"input1": "ao"},
+          **gradient_keys([(0.0, (0.15, 0.15, 0.15)), (1.0, (1.0, 1.0, 1.0))]))
     g.add("basecolor", "blend", {"source": "ao_color", "destination": "wall"},
           blendingmode=MULTIPLY, opacitymult=0.45)
 

@@ -23,7 +23,18 @@ Exposed parameters
 """
 from __future__ import annotations
 
-from blender_match.library.authoring import ADD, ADD_SUB, COPY, MAX, MULTIPLY, OVERLAY, SOFT_LIGHT, constant_map, gradient_keys, set_material_outputs
+from blender_match.library.authoring import (
+    ADD,
+    ADD_SUB,
+    COPY,
+    MAX,
+    MULTIPLY,
+    OVERLAY,
+    SOFT_LIGHT,
+    constant_map,
+    gradient_keys,
+    set_material_outputs,
+)
 from blender_match.library.expressions import get, lerp, vector
 from blender_match.translator.runtime import SbsGraph
 
@@ -106,7 +117,8 @@ def build() -> SbsGraph:
     g.bind("film", "position", lerp(0.0, 0.6, get("dirt")).graph())
     g.add("filmy", "blend", {"source": "grime_color", "destination": "grimy", "opacity": "film"},
           blendingmode=MULTIPLY, opacitymult=0.07)
-    g.add("ao_color", "gradient", {"input1": "ao"}, **gradient_keys([(0.0, (0.25, 0.25, 0.25)), (1.0, (1.0, 1.0, 1.0))]))
+    g.add("ao_color", "gradient", {"input1": "ao"},
+          **gradient_keys([(0.0, (0.25, 0.25, 0.25)), (1.0, (1.0, 1.0, 1.0))]))
     g.add("basecolor", "blend", {"source": "ao_color", "destination": "filmy"},
           blendingmode=MULTIPLY, opacitymult=0.5)
 

@@ -2,7 +2,8 @@
 
 Structure
 - Grain: a fine Voronoi-like cell pattern (Cells 1) warped by a cloud noise so the pebbles are
-  irregular, shaped into rounded domes with a histogram scan, their heights varied by a fine Perlin noise; tiny pores (BnW Spots 3) sink into it.
+  irregular, shaped into rounded domes with a histogram scan, their heights varied by a fine
+  Perlin noise; tiny pores (BnW Spots 3) sink into it.
 - Wrinkles: thin crease lines taken as an iso-line band of the Creased generator (histogram
   select), warped, blurred, and cut into the grain (depth exposed), plus the generator's broad
   folds as a low-frequency undulation.
@@ -23,10 +24,19 @@ Exposed parameters
 """
 from __future__ import annotations
 
-from blender_match.library.authoring import ADD, ADD_SUB, MULTIPLY, OVERLAY, SOFT_LIGHT, SUBTRACT, constant_map, gradient_keys, set_material_outputs
+from blender_match.library.authoring import (
+    ADD,
+    ADD_SUB,
+    MULTIPLY,
+    OVERLAY,
+    SOFT_LIGHT,
+    SUBTRACT,
+    constant_map,
+    gradient_keys,
+    set_material_outputs,
+)
 from blender_match.library.expressions import get, lerp, vector
 from blender_match.translator.runtime import SbsGraph
-
 
 
 def build() -> SbsGraph:

@@ -24,7 +24,17 @@ Exposed parameters
 """
 from __future__ import annotations
 
-from blender_match.library.authoring import ADD, ADD_SUB, COPY, MULTIPLY, SOFT_LIGHT, SUBTRACT, constant_map, gradient_keys, set_material_outputs
+from blender_match.library.authoring import (
+    ADD,
+    ADD_SUB,
+    COPY,
+    MULTIPLY,
+    SOFT_LIGHT,
+    SUBTRACT,
+    constant_map,
+    gradient_keys,
+    set_material_outputs,
+)
 from blender_match.library.expressions import const, get, lerp, vector
 from blender_match.translator.runtime import SbsGraph
 

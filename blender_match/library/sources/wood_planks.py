@@ -24,10 +24,20 @@ Exposed parameters
 """
 from __future__ import annotations
 
-from blender_match.library.authoring import ADD, COPY, MAX, MULTIPLY, OVERLAY, SOFT_LIGHT, SUBTRACT, constant_map, gradient_keys, set_material_outputs
+from blender_match.library.authoring import (
+    ADD,
+    COPY,
+    MAX,
+    MULTIPLY,
+    OVERLAY,
+    SOFT_LIGHT,
+    SUBTRACT,
+    constant_map,
+    gradient_keys,
+    set_material_outputs,
+)
 from blender_match.library.expressions import const, get, lerp, minimum, vector
 from blender_match.translator.runtime import SbsGraph
-
 
 
 def build() -> SbsGraph:

@@ -22,10 +22,19 @@ Exposed parameters
 """
 from __future__ import annotations
 
-from blender_match.library.authoring import ADD_SUB, COPY, MAX, MULTIPLY, SOFT_LIGHT, SUBTRACT, constant_map, gradient_keys, set_material_outputs
+from blender_match.library.authoring import (
+    ADD_SUB,
+    COPY,
+    MAX,
+    MULTIPLY,
+    SOFT_LIGHT,
+    SUBTRACT,
+    constant_map,
+    gradient_keys,
+    set_material_outputs,
+)
 from blender_match.library.expressions import get, lerp, vector
 from blender_match.translator.runtime import SbsGraph
-
 
 
 def build() -> SbsGraph:

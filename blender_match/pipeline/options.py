@@ -1,0 +1,45 @@
+"""What a match is asked to do (``MatchOptions``), the checks of those options, and the one place a
+quality name becomes the optimiser's ``Schedule``."""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from ..diffmat.optim import Schedule, quality_schedule
+from ..errors import OptionError
+from ..vocabulary import DEFAULT_DEVICE, DEFAULT_QUALITY, QUALITY_NAMES
+
+PHOTO_SIZE = 512  # the photo is described at 512 at most (the paper's largest scale)
+MIN_SIZE, MAX_SIZE = 16, 8192
+
+
+@dataclass
+class MatchOptions:
+    """What to match and how. ``graph``: a library graph's name, a bundled graph's name or a
+    ``.sbs`` path (None: automatic selection). ``iterations`` overrides the quality preset's
+    iteration count (tests and scripted drafts)."""
+
+    graph: str | None = None
+    size: int = 2048
+    quality: str = DEFAULT_QUALITY
+    seed: int = 0
+    device: str = DEFAULT_DEVICE
+    overwrite: bool = False
+    iterations: int | None = None
+
+
+def check_size(size) -> int:
+    """``size`` when it is a power of two between MIN_SIZE and MAX_SIZE, else OptionError."""
+    if (isinstance(size, bool) or not isinstance(size, int) or size < MIN_SIZE or size > MAX_SIZE
+            or size & (size - 1)):
+        raise OptionError(f"size {size!r}: expected a power of two between {MIN_SIZE} and {MAX_SIZE}")
+    return size
+
+
+def match_schedule(quality: str, iterations: int | None = None) -> Schedule:
+    """The optimiser's schedule for a quality name, rescaled to ``iterations`` in all when given."""
+    if quality not in QUALITY_NAMES:
+        raise OptionError(f"quality {quality!r}: expected one of {', '.join(QUALITY_NAMES)}")
+    if iterations is not None and (isinstance(iterations, bool) or not isinstance(iterations, int)
+                                   or iterations < 1):
+        raise OptionError(f"iterations {iterations!r}: expected a positive integer")
+    return quality_schedule(quality, iterations)

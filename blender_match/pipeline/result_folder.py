@@ -1,0 +1,95 @@
+"""Result folders: what a match or a re-render writes, and the refusal, before any work, to
+replace files that are already there.
+
+A result folder holds the material's maps (``vocabulary.MATERIAL_OUTPUTS``: basecolor.png sRGB
+8-bit, normal.png OpenGL 16-bit, roughness.png, metallic.png, height.png 16-bit,
+ambientocclusion.png when the graph has it), ``params.json`` (reloadable:
+``pipeline.render_params``), ``comparison.png`` (photo | render | maps) and ``report.json``.
+"""
+from __future__ import annotations
+
+import json
+from collections.abc import Iterable
+from pathlib import Path
+
+import torch
+
+from ..diffmat import MaterialGraph
+from ..diffmat.optim import resize_square
+from ..diffmat.params_file import graph_params
+from ..diffmat.render import render_maps
+from ..errors import BlenderMatchError
+from ..image_files import write_png
+from ..material_maps import to_channels, write_maps
+from ..safe_files import FileWriteError, write_atomic
+from ..vocabulary import AUTHORED_USAGES, COMPARISON_FILE, OUTPUTS, PARAMS_FILE, REPORT_FILE
+from .progress import JobProgress
+
+MATCH_FILES = (PARAMS_FILE, COMPARISON_FILE, REPORT_FILE)
+COMPARISON_TILE = 256
+
+
+class MatchFailed(BlenderMatchError):
+    """The fit produced no usable material (a non-finite loss or map); nothing was written."""
+
+
+def refuse_existing(paths: Iterable[Path], overwrite: bool) -> None:
+    """FileWriteError naming the first of ``paths`` that exists, unless ``overwrite``."""
+    if overwrite:
+        return
+    existing = [Path(p) for p in paths if Path(p).exists()]
+    if existing:
+        raise FileWriteError(f"{existing[0]}: already exists (use --overwrite to replace it)")
+
+
+def check_targets(out_dir, usages: Iterable[str], overwrite: bool, extra: Iterable[str] = MATCH_FILES) -> None:
+    """Refuse, before any work, to replace the files of ``usages``' maps and ``extra`` in ``out_dir``."""
+    names = [OUTPUTS[u].file for u in usages if u in OUTPUTS] + list(extra)
+    refuse_existing((Path(out_dir) / n for n in names), overwrite)
+
+
+def write_json(path: Path, data: dict, overwrite: bool) -> None:
+    write_atomic(path, json.dumps(data, indent=1).encode("utf-8"), overwrite=overwrite)
+
+
+def evaluate_maps(graph: MaterialGraph, size: int, seed: int) -> dict[str, torch.Tensor]:
+    """The graph's maps at ``size`` (no gradients); MatchFailed when one is not finite."""
+    with torch.no_grad():
+        maps = graph(size=size, seed=seed)
+    bad = [u for u, m in maps.items() if not torch.isfinite(m).all()]
+    if bad:
+        raise MatchFailed(f"graph {graph.name}: the fitted {bad[0]} map is not finite; nothing written")
+    return maps
+
+
+def comparison_image(maps: dict[str, torch.Tensor], photo: torch.Tensor | None) -> torch.Tensor:
+    """One row of COMPARISON_TILE squares: the photo (when given), the render, then every map."""
+    with torch.no_grad():
+        tiles: list[torch.Tensor | None] = [] if photo is None else [photo]
+        tiles.append(render_maps(maps)[:1] if "basecolor" in maps else None)
+        tiles.extend(to_channels(maps[u][:1], 3) for u in AUTHORED_USAGES if u in maps)
+        squares = [resize_square(t.float().cpu().clamp(0, 1), COMPARISON_TILE) for t in tiles if t is not None]
+        return torch.cat(squares, dim=3)
+
+
+def write_result(graph: MaterialGraph, source: str, out_dir, size: int, seed: int, device, overwrite: bool,
+                 progress: JobProgress, photo: torch.Tensor | None = None,
+                 report_extra: dict | None = None) -> dict:
+    """Evaluate the graph at ``size`` and write maps, params.json, comparison.png and report.json;
+    returns the report. ``source`` names the graph as ``pipeline.load_graph`` loads it again."""
+    out_dir = Path(out_dir)
+    maps = evaluate_maps(graph, size, seed)
+    progress.check_cancel()
+    comparison = comparison_image(maps, photo)
+    maps = {u: m.cpu() for u, m in maps.items()}
+    progress.within(0.3)
+    written = write_maps(maps, out_dir, overwrite=overwrite)
+    write_json(out_dir / PARAMS_FILE, {"graph": graph.name, "source": source, "seed": seed,
+                                       "params": graph_params(graph)}, overwrite)
+    write_png(out_dir / COMPARISON_FILE, comparison, overwrite=overwrite)
+    progress.stage(None)
+    report = {"graph": graph.name, "source": source, "size": size, "seed": seed, "device": str(device),
+              **(report_extra or {}), "maps": written, "params_file": PARAMS_FILE,
+              "comparison": COMPARISON_FILE, "stages": progress.stage_seconds, "seconds": progress.seconds()}
+    write_json(out_dir / REPORT_FILE, report, overwrite)
+    return report

@@ -1,0 +1,84 @@
+"""The words every floor of blender_match shares: material outputs, quality presets, devices and
+progress stages. Standard library only, so that Blender's Python (which has no torch) reads the
+same definitions as the engine, the pipeline and the command line.
+
+A material output is one map a graph produces and a result folder holds: its name (the graph's
+output usage, the report's key), its label, its Substance usage, how many channels the engine
+produces, the PNG file it is written to (channels and bit depth) and the colour space Blender
+reads that file in.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+
+@dataclass(frozen=True)
+class MaterialOutput:
+    """One map of a material (see the module docstring)."""
+
+    name: str
+    label: str
+    sbs_usage: str
+    channels: int
+    file: str
+    file_channels: int
+    bits: int
+    colour_space: str
+
+    @property
+    def srgb(self) -> bool:
+        """True for colour stored sRGB-encoded (base colour), False for data maps."""
+        return self.colour_space == "sRGB"
+
+
+MATERIAL_OUTPUTS = (
+    MaterialOutput("basecolor", "Base Color", "baseColor", 4, "basecolor.png", 3, 8, "sRGB"),
+    MaterialOutput("normal", "Normal", "normal", 4, "normal.png", 3, 16, "Non-Color"),
+    MaterialOutput("roughness", "Roughness", "roughness", 1, "roughness.png", 1, 8, "Non-Color"),
+    MaterialOutput("metallic", "Metallic", "metallic", 1, "metallic.png", 1, 8, "Non-Color"),
+    MaterialOutput("height", "Height", "height", 1, "height.png", 1, 16, "Non-Color"),
+    MaterialOutput("ambientocclusion", "Ambient Occlusion", "ambientOcclusion", 1, "ambientocclusion.png", 1, 8,
+                   "Non-Color"),
+)
+OUTPUTS = {output.name: output for output in MATERIAL_OUTPUTS}
+USAGES = tuple(OUTPUTS)
+# the maps every physically based material has (exports require them); the others may be absent
+PBR_USAGES = ("basecolor", "normal", "roughness", "metallic")
+# the maps a library material is authored with and compared on (ambient occlusion is derived)
+AUTHORED_USAGES = (*PBR_USAGES, "height")
+
+
+@dataclass(frozen=True)
+class Choice:
+    """A named choice a user makes: its name (the value on the command line and in requests), the
+    label Blender shows and a one-line description."""
+
+    name: str
+    label: str
+    description: str
+
+
+QUALITIES = (
+    Choice("draft", "Draft", "Fast: a short fit, for a first look"),
+    Choice("balanced", "Balanced", "The default: a good fit in a few minutes"),
+    Choice("best", "Best", "The longest fit, for the final material"),
+)
+QUALITY_NAMES = tuple(q.name for q in QUALITIES)
+DEFAULT_QUALITY = "balanced"
+
+DEVICES = (
+    Choice("auto", "Automatic", "A GPU (CUDA or Metal) when the worker has one, else the CPU"),
+    Choice("cpu", "CPU", "The processor"),
+    Choice("cuda", "CUDA", "An NVIDIA GPU"),
+    Choice("mps", "Metal", "An Apple GPU"),
+)
+DEVICE_NAMES = tuple(d.name for d in DEVICES)
+DEFAULT_DEVICE = "auto"
+
+# The files of a result folder besides the maps (``MaterialOutput.file``).
+PARAMS_FILE, COMPARISON_FILE, REPORT_FILE = "params.json", "comparison.png", "report.json"
+
+# The stages of a match, in order, as progress events name them ("selecting" only without a graph).
+READING_PHOTO, SELECTING, FITTING, WRITING_MAPS = "reading photo", "selecting", "fitting", "writing maps"
+STAGES = (READING_PHOTO, SELECTING, FITTING, WRITING_MAPS)
+STAGE_TITLES = {stage: stage.capitalize() for stage in STAGES}

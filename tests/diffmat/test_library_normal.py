@@ -1,0 +1,137 @@
+"""Known-value tests of the library normal / height / relief nodes (functional/library_normal.py)."""
+from __future__ import annotations
+
+import pytest
+import torch
+from imagecheck import smooth_tiling_image
+
+from blender_match.diffmat import DiffMatError, Node
+from blender_match.diffmat import functional as F
+
+
+def flat_normal(size=16):
+    return torch.tensor([0.5, 0.5, 1.0, 1.0]).reshape(1, 4, 1, 1).expand(1, 4, size, size).clone()
+
+
+def bump(size=32, sigma=0.12):
+    c = (torch.arange(size) + 0.5) / size - 0.5
+    r2 = c[None, :] ** 2 + c[:, None] ** 2
+    return torch.exp(-r2 / (2 * sigma ** 2)).reshape(1, 1, size, size)
+
+
+def square(size=32, lo=8, hi=24):
+    x = torch.zeros(1, 1, size, size)
+    x[..., lo:hi, lo:hi] = 1.0
+    return x
+
+
+def some_normal(size=32, fmt=0):
+    return F.height_to_normal_map(smooth_tiling_image(1, size, seed=9), 20.0, fmt)
+
+
+@pytest.mark.parametrize("quality", [0, 1])
+def test_normal_combine_with_flat_is_identity(quality):
+    n = some_normal()
+    torch.testing.assert_close(F.normal_combine(n, flat_normal(32), blend_quality=quality), n, atol=1e-5, rtol=0)
+    torch.testing.assert_close(F.normal_combine(flat_normal(32), n, blend_quality=quality), n, atol=1e-5, rtol=0)
+    both = F.normal_combine(n, n, blend_quality=quality)
+
+    def tilt(m):
+        return (m[:, :2] - 0.5).abs().mean()
+
+    assert tilt(both) > tilt(n) * 1.3                      # details add up
+    with pytest.raises(DiffMatError):
+        F.normal_combine(n, n, blend_quality=2)
+
+
+def test_normal_blend_opacity_and_mask():
+    a, b = some_normal(), flat_normal(32)
+    torch.testing.assert_close(F.normal_blend(a, b, opacity=0.0), a, atol=1e-5, rtol=0)
+    torch.testing.assert_close(F.normal_blend(a, b, opacity=1.0), b, atol=1e-5, rtol=0)
+    mask = torch.zeros(1, 1, 32, 32)
+    mask[..., :16] = 1.0
+    out = F.normal_blend(a, b, mask, opacity=1.0)
+    torch.testing.assert_close(out[..., :16], b[..., :16], atol=1e-5, rtol=0)
+    torch.testing.assert_close(out[..., 16:], a[..., 16:], atol=1e-5, rtol=0)
+    torch.testing.assert_close(F.normal_blend(a, b, mask, opacity=1.0, use_mask=False), b, atol=1e-5, rtol=0)
+
+
+def test_normal_normalise_unit_length():
+    n = some_normal()
+    torch.testing.assert_close(F.normal_normalise(n), n, atol=1e-5, rtol=0)
+    short = n.clone()
+    short[:, :3] = (n[:, :3] - 0.5) * 0.5 + 0.5
+    v = F.normal_normalise(short)[:, :3] * 2 - 1
+    torch.testing.assert_close(v.norm(dim=1), torch.ones(1, 32, 32), atol=1e-4, rtol=0)
+
+
+@pytest.mark.parametrize("fmt", [0, 1])
+def test_normal_to_height_recovers_height(fmt):
+    h = smooth_tiling_image(1, 32, seed=9)
+    rec = F.normal_to_height(F.height_to_normal_map(h, 5.0, fmt), normal_format=fmt)
+    corr = torch.corrcoef(torch.stack([h.flatten(), rec.flatten()]))[0, 1]
+    assert corr > 0.98
+    wrong = F.normal_to_height(F.height_to_normal_map(h, 5.0, fmt), normal_format=1 - fmt)
+    assert torch.corrcoef(torch.stack([h.flatten(), wrong.flatten()]))[0, 1] < 0.9
+
+
+def test_curvature_flat_and_bump():
+    torch.testing.assert_close(F.curvature(flat_normal()), torch.full((1, 1, 16, 16), 0.5))
+    for fmt in (0, 1):
+        n = F.height_to_normal_map(bump(), 20.0, fmt)
+        c = F.curvature(n, normal_format=fmt, intensity=5.0)
+        assert c[0, 0, 16, 16] > 0.55                        # convex top bright
+        s = F.curvature_smooth(n, normal_format=fmt)
+        assert s[0, 0, 16, 16] > 0.6 and s[0, 0, 0, 0] < 0.55
+
+
+def test_hbao_flat_is_one_and_pit_is_dark():
+    flat = torch.full((1, 1, 32, 32), 0.5)
+    torch.testing.assert_close(F.hbao(flat), torch.ones_like(flat))
+    pit = 1 - bump()
+    ao = F.hbao(pit, height_depth=0.3)
+    assert ao[0, 0, 16, 16] < 0.9 and ao[0, 0, 0, 0] > ao[0, 0, 16, 16]
+    ao8 = Node("hbao", {"quality": 8})(pit)
+    assert ao8.shape == pit.shape
+
+
+def test_ambient_occlusion_2_flat_is_one_and_pit_is_dark():
+    flat = torch.full((1, 1, 32, 32), 0.3)
+    torch.testing.assert_close(F.ambient_occlusion(flat), torch.ones_like(flat), atol=1e-5, rtol=0)
+    ao = F.ambient_occlusion(1 - bump(), height_depth=0.5, spreading=0.5)
+    assert ao[0, 0, 16, 16] < 0.9 and ao[0, 0, 0, 0] > 0.99
+
+
+def test_edge_detect_finds_square_contour():
+    out = F.edge_detect(square(), edge_width=2.0, edge_roundness=0.0)
+    assert out[0, 0, 16, 8] > 0.9 and out[0, 0, 8, 16] > 0.9           # on the contour
+    assert out[0, 0, 16, 16] < 0.01 and out[0, 0, 0, 0] < 0.01         # inside and outside
+    inv = F.edge_detect(square(), edge_width=2.0, edge_roundness=0.0, invert=True)
+    torch.testing.assert_close(inv, 1 - out)
+
+
+def test_bevel_ramps_inwards_and_outwards():
+    size = 64
+    x = square(size, 16, 48)
+    h, n = F.bevel(x, distance=0.5)                 # width 0.1 image = 6.4 px
+    assert h[0, 0, 32, 32] > 0.99 and h[0, 0, 0, 0] < 0.01
+    row = h[0, 0, 32]
+    assert 0.1 < row[18] < 0.6 and row[18] < row[20] < row[23]          # rising ramp inside
+    assert n.shape[1] == 4
+    torch.testing.assert_close(n[0, :3, 32, 32], torch.tensor([0.5, 0.5, 1.0]), atol=1e-3, rtol=0)
+    assert n[0, 0, 32, 18] < 0.45                  # left rim faces left (-x)
+    out, _ = F.bevel(x, distance=-0.5)
+    assert out[0, 0, 32, 20] > 0.99 and 0.1 < out[0, 0, 32, 13] < 0.9 and out[0, 0, 32, 4] < 0.01
+
+
+def test_pbr_conversion_known_values():
+    base = torch.tensor([0.8, 0.4, 0.2, 1.0]).reshape(1, 4, 1, 1).expand(1, 4, 4, 4)
+    zero, one = torch.zeros(1, 1, 4, 4), torch.ones(1, 1, 4, 4)
+    diff, spec, gloss = F.metallic_roughness_to_specular_glossiness(base, zero, torch.full((1, 1, 4, 4), 0.3))
+    torch.testing.assert_close(diff, base, atol=1e-5, rtol=0)
+    srgb004 = 1.055 * 0.04 ** (1 / 2.4) - 0.055
+    torch.testing.assert_close(spec[0, :3, 0, 0], torch.full((3,), srgb004), atol=1e-4, rtol=0)
+    torch.testing.assert_close(gloss, torch.full((1, 1, 4, 4), 0.7))
+    diff, spec, _ = F.metallic_roughness_to_specular_glossiness(base, one, zero)
+    assert diff[:, :3].max() < 1e-6
+    torch.testing.assert_close(spec, base, atol=1e-5, rtol=0)

@@ -1,0 +1,262 @@
+"""Known-value tests of the pattern generators (functional/pattern_tiles.py, pattern_shapes.py,
+pattern_cells.py): layouts, symmetry, areas, ramps, seeds, normal colours."""
+from __future__ import annotations
+
+import math
+
+import pytest
+import torch
+
+from blender_match.diffmat import DiffMatError, EvalContext, Node
+from blender_match.diffmat import functional as F
+
+S = 64
+
+
+def _render(name, size=S, seed=0, **params):
+    with torch.no_grad():
+        return Node(name, params)(ctx=EvalContext(size=size, seed=seed))
+
+
+# --- tile generator ------------------------------------------------------------------------------
+def test_tile_generator_4x4_squares_are_16_equal_tiles():
+    out = _render("tile_generator", x_amount=4, y_amount=4, pattern=1, scale=0.7)
+    q = S // 4
+    torch.testing.assert_close(out, torch.roll(out, q, dims=-1))
+    torch.testing.assert_close(out, torch.roll(out, q, dims=-2))
+    assert not torch.allclose(out, torch.roll(out, q // 2, dims=-1))  # not trivially uniform
+    # each tile: a 0.7-wide square -> coverage 0.49
+    assert abs(out.mean().item() - 0.49) < 0.02
+
+
+def test_tile_generator_interstice_widens_the_gaps():
+    narrow = _render("tile_generator", x_amount=4, y_amount=4, pattern=1, interstice=(0.1, 0.1))
+    wide = _render("tile_generator", x_amount=4, y_amount=4, pattern=1, interstice=(0.4, 0.4))
+    assert abs(narrow.mean().item() - 0.81) < 0.02
+    assert abs(wide.mean().item() - 0.36) < 0.02
+    x_only = _render("tile_generator", x_amount=4, y_amount=4, pattern=1, interstice=(0.5, 0.0))
+    cols, rows = x_only[0, 0].mean(dim=0), x_only[0, 0].mean(dim=1)
+    assert cols.min() < 0.01 and rows.min() > 0.4  # vertical gaps only
+
+
+def test_tile_generator_brick_offset_shifts_alternate_rows():
+    kw = dict(x_amount=4, y_amount=4, pattern=1, interstice=(0.2, 0.2))
+    base = _render("tile_generator", **kw)[0, 0]
+    off = _render("tile_generator", offset=0.5, **kw)[0, 0]
+    cell = S // 4
+    for row in range(4):
+        band = slice(row * cell, (row + 1) * cell)
+        if row % 2 == 0:
+            torch.testing.assert_close(off[band], base[band])
+        else:
+            torch.testing.assert_close(off[band], torch.roll(base[band], cell // 2, dims=-1))
+    assert not torch.allclose(off, base)
+
+
+def test_tile_generator_randomness_is_seeded_and_per_tile():
+    kw = dict(x_amount=8, y_amount=8, luminance_random=1.0, pattern=1, scale=0.8)
+    a, b, c = _render("tile_generator", seed=1, **kw), _render("tile_generator", seed=1, **kw), \
+        _render("tile_generator", seed=2, **kw)
+    assert torch.equal(a, b) and not torch.allclose(a, c)
+    centres = a[0, 0, 4::8, 4::8]  # one sample per tile
+    assert centres.std() > 0.1
+    # luminance is constant inside a tile
+    tile = a[0, 0, 8 + 2:8 + 6, 8 + 2:8 + 6]
+    assert tile.max() - tile.min() < 1e-6
+
+
+def test_tile_generator_mask_random_hides_tiles_and_is_differentiable():
+    full = _render("tile_generator", x_amount=8, y_amount=8, pattern=1, scale=0.8)
+    half = _render("tile_generator", x_amount=8, y_amount=8, pattern=1, scale=0.8, mask_random=0.5)
+    none = _render("tile_generator", x_amount=8, y_amount=8, pattern=1, scale=0.8, mask_random=1.0)
+    assert none.max() == 0
+    assert 0.2 < half.mean().item() / full.mean().item() < 0.8
+    m = torch.tensor([0.5], requires_grad=True)
+    F.tile_pattern(x_amount=8, y_amount=8, pattern=1, mask_random=m, size=32).sum().backward()
+    assert m.grad is not None and m.grad.item() < 0
+
+
+def test_tile_generator_pattern_input_is_stamped_in_each_tile():
+    img = torch.zeros(1, 1, 16, 16)
+    img[..., :, :8] = 1.0  # left half white
+    out = F.tile_pattern(img, x_amount=2, y_amount=2, pattern=0, size=S)
+    tile = out[0, 0, :32, :32]
+    assert tile[:, :14].mean() > 0.95 and tile[:, 18:].mean() < 0.05
+    torch.testing.assert_close(out, torch.roll(out, 32, dims=-1))
+
+
+def test_tile_generator_color_has_a_colour_per_tile():
+    out = _render("tile_generator_color", x_amount=4, y_amount=4, pattern=1, scale=0.8)
+    assert out.shape == (1, 4, S, S)
+    centres = out[0, :3, 8::16, 8::16].reshape(3, -1)
+    assert (centres.std(dim=1) > 0.05).all()
+    assert torch.all(out[0, 3] == 1)
+    assert out[0, :3, 0, 0].max() == 0  # background between tiles
+
+
+def test_tile_generator_batched_and_bad_values():
+    out = F.tile_pattern(x_amount=4, y_amount=4, pattern=1, scale=torch.tensor([[0.5], [1.0]]), size=32)
+    assert out.shape[0] == 2 and out[0].mean() < out[1].mean()
+    with pytest.raises(DiffMatError):
+        F.tile_pattern(pattern=99, size=32)
+    with pytest.raises(DiffMatError):
+        Node("tile_generator", {"x_amount": 0})
+
+
+# --- shapes ---------------------------------------------------------------------------------------
+def test_shape_disc_is_symmetric_and_its_area_matches_its_size():
+    for scale in (0.4, 0.8):
+        out = _render("shape", size=128, pattern=1, scale=scale)[0, 0]
+        torch.testing.assert_close(out, out.flip(-1))
+        torch.testing.assert_close(out, out.flip(-2))
+        torch.testing.assert_close(out, out.transpose(0, 1))
+        assert abs(out.mean().item() - math.pi * (scale / 2) ** 2) < 0.005
+
+
+def test_shape_tiling_and_square():
+    sq = _render("shape", pattern=0, scale=0.5)
+    assert abs(sq.mean().item() - 0.25) < 0.01
+    tiled = _render("shape", pattern=1, scale=0.5, tiling=4)
+    torch.testing.assert_close(tiled, torch.roll(tiled, S // 4, dims=-1))
+
+
+def test_shape_profiles_are_bounded_and_peak_in_the_centre():
+    for pattern in range(16):
+        out = _render("shape", size=32, pattern=pattern, scale=0.8)
+        assert out.min() >= 0 and out.max() <= 1
+        if pattern not in (8, 9, 10, 12):  # gradation, waves, half bell, crescent are off-centre
+            assert out[0, 0, 16, 16] >= out.max() - 0.15, pattern
+        assert out[0, 0, 0, 0] < 0.05, pattern
+
+
+def test_shape_angle_rotates():
+    a = _render("shape", pattern=8, scale=0.6)[0, 0]  # gradation: ramp along x
+    b = _render("shape", pattern=8, scale=0.6, angle=0.25)[0, 0]
+    torch.testing.assert_close(b, a.rot90(-1, dims=(0, 1)), atol=2e-3, rtol=0)
+
+
+def test_polygon_sides_change_the_area():
+    areas = [_render("polygon_1", size=128, sides=n, scale=0.8).mean().item() for n in (3, 4, 8)]
+    r = 0.4
+    for n, area in zip((3, 4, 8), areas):
+        assert abs(area - 0.5 * n * r * r * math.sin(2 * math.pi / n)) < 0.01
+
+
+# --- gradients, normal colour, stripes -----------------------------------------------------------------
+def test_gradient_linear_1_is_a_ramp():
+    out = _render("gradient_linear_1")[0, 0]
+    row = out[0]
+    assert torch.all(out == row)  # constant down the columns
+    assert torch.all(row[1:-1] - row[:-2] > 0)  # increasing (the last pixel is the anti-aliased drop)
+    torch.testing.assert_close(row[1:-1] - row[:-2], torch.full((S - 2,), 1 / (S - 1)), atol=1e-5, rtol=0)
+    assert row[0] < 0.02 and row[-2] > 0.97
+    vert = _render("gradient_linear_1", rotation=0.25)[0, 0]
+    torch.testing.assert_close(vert, out.T)
+    two = _render("gradient_linear_1", tiling=2)[0, 0, 0]
+    torch.testing.assert_close(two[:S // 2], two[S // 2:])
+
+
+def test_gradient_linear_2_and_3_are_symmetric_peaks():
+    for name in ("gradient_linear_2", "gradient_linear_3"):
+        row = _render(name)[0, 0, 0]
+        torch.testing.assert_close(row, row.flip(0))
+        assert row.max() > 0.98 and row.min() < 0.05
+        assert row[S // 2 - 1] > 0.95
+
+
+def test_normal_color_of_a_flat_direction():
+    out = _render("normal_color", size=8)
+    torch.testing.assert_close(out[0, :, 0, 0], torch.tensor([0.5, 0.5, 1.0, 1.0]))
+    tilt = _render("normal_color", size=8, direction=0.0, slope_angle=0.125)[0, :, 0, 0]
+    s = math.sin(math.pi / 4) * 0.5
+    torch.testing.assert_close(tilt, torch.tensor([0.5 + s, 0.5, 0.5 + s, 1.0]))
+    up = _render("normal_color", size=8, direction=0.25, slope_angle=0.125, invert_y=True)[0, :, 0, 0]
+    assert up[1] < 0.5
+
+
+def test_stripes_count_and_width():
+    out = _render("stripes", number=4, width=0.25)[0, 0]
+    assert abs(out.mean().item() - 0.25) < 0.01
+    torch.testing.assert_close(out, torch.roll(out, S // 4, dims=-1))
+    assert torch.all(out == out[0])
+
+
+def test_checker():
+    out = _render("checker_1", tiling=2)[0, 0]
+    assert out[0, 0] == 1 and out[0, S // 4] == 0 and out[S // 4, S // 4] == 1
+    assert abs(out.mean().item() - 0.5) < 1e-6
+
+
+# --- cells ---------------------------------------------------------------------------------------------
+@pytest.mark.parametrize("name", ["cells_1", "cells_2", "cells_3", "cells_4", "alveolus"])
+def test_cells_differ_across_seeds_and_follow_scale(name):
+    a, b = _render(name, seed=1), _render(name, seed=2)
+    assert (a - b).abs().mean() > 0.02
+    torch.testing.assert_close(a, _render(name, seed=1))
+    # more cells -> more structure per pixel (larger mean neighbour difference)
+    fine, coarse = _render(name, seed=1, scale=16), _render(name, seed=1, scale=4)
+
+    def grad(x):
+        return (x - torch.roll(x, 1, -1)).abs().mean()
+
+    assert grad(fine) > grad(coarse)
+
+
+def test_cells_2_is_zero_at_the_feature_points():
+    out = _render("cells_2", size=128, scale=4)
+    assert out.min() < 0.02 and out.max() > 0.5
+
+
+def test_cells_4_is_flat_inside_cells():
+    out = _render("cells_4", size=128, scale=4)[0, 0]
+    flat = ((out - torch.roll(out, 1, -1)).abs() < 1e-6).float().mean()
+    assert flat > 0.75
+
+
+# --- other tile layouts ---------------------------------------------------------------------------
+def test_brick_generator_rows_are_offset():
+    out = _render("brick_generator", size=128, luminance_random=0.0)[0, 0]
+    row_h = 128 // 8
+    r0, r1 = out[row_h // 2], out[row_h + row_h // 2]
+    torch.testing.assert_close(r1, torch.roll(r0, 128 // 8, dims=0))
+    assert r0.min() < 0.05 and r0.max() > 0.95
+
+
+def test_parquet_weave_mesh_splatter_scratches_creased_basic_looks():
+    parquet = _render("parquet_1", size=128)[0, 0]
+    assert parquet.mean() > 0.4 and (parquet < 0.05).float().mean() > 0.02  # planks and gaps
+    weave = _render("weave_generator", luminance_random=0.0)
+    torch.testing.assert_close(weave, torch.roll(weave, S // 4, dims=-1))  # period 2 threads
+    mesh = _render("mesh_1")
+    assert (mesh < 0.01).float().mean() > 0.3  # holes between wires
+    spl = _render("splatter_circular", size=128, pattern=2, pattern_amount=6)[0, 0]
+    assert spl[64, 64] == 0 and spl.max() > 0.9
+    rot = torch.rot90(spl, 2, dims=(0, 1))  # 6 copies: symmetric under a half turn about the centre
+    assert (rot - spl).abs().max() < 1e-4
+    s1, s2 = _render("scratches_generator", seed=1), _render("scratches_generator", seed=2)
+    assert s1.max() > 0.5 and not torch.allclose(s1, s2) and s1.mean() < 0.3
+    cr = _render("creased")
+    assert cr.std() > 0.1
+
+
+
+def test_scratches_bands_match_full_evaluation_and_wrap():
+    """Scratches are rasterised per line band; the result equals the tile-layout evaluation of the
+    same lines (tile_field, every cell in reach) and tiles."""
+    from blender_match.diffmat.functional.pattern_shapes import aa_coverage, safe_sqrt, tile_field
+
+    def line(x, y, w, s, ex, ey):
+        ratio = torch.sqrt(ex / ey)
+        return aa_coverage(y.abs() - safe_sqrt(1.0 - x * x), w * ratio) * aa_coverage(x.abs() - 1.0, w / ratio)
+
+    size, n = 128, 4
+    out = F.scratches(amount=n, size=size, seed=5)
+    size_xy = torch.tensor([1.4, 0.02])
+    ref = None
+    for layer in range(2):
+        h, _ = tile_field(size, n, n, seed=5 * 2 + layer + 1, profile=line, size_xy=size_xy, position_random=0.5,
+                          scale_random=0.5, rotation=0.0, rotation_random=0.5, luminance_random=0.5,
+                          offset=0.5 * layer)
+        ref = h if ref is None else torch.maximum(ref, h)
+    assert (out - ref).abs().max() < 1e-4
+    assert out.max() > 0.5

@@ -1,0 +1,217 @@
+"""Automatic graph selection and parameter prediction (blender_match.selection, issue 6)."""
+from __future__ import annotations
+
+import json
+
+import pytest
+import torch
+
+from blender_match.library import library_names
+from blender_match.selection import predictor
+from blender_match.selection.bank import (
+    SampleSpace,
+    bank_is_current,
+    build_bank,
+    describe,
+    load_bank,
+    nearest,
+    render_images,
+)
+from blender_match.selection.descriptor import DESCRIPTOR_DIM, compact_descriptor, descriptor_distance, shared_vgg
+from blender_match.selection.predictor import (
+    ParamPredictor,
+    fit_params,
+    load_predictor,
+    masked_l1,
+    predictor_is_current,
+    save_predictor,
+)
+from blender_match.selection.rank import (
+    NO_MODELS,
+    NoSelectionModels,
+    available_models,
+    order_by_simplicity,
+    rank_graphs,
+)
+
+
+@pytest.fixture(autouse=True)
+def _one_thread():
+    """These tests render and describe many small images: one torch thread avoids the
+    oversubscription that makes small ops crawl on a shared 2-core machine."""
+    threads = torch.get_num_threads()
+    torch.set_num_threads(1)
+    yield
+    torch.set_num_threads(threads)
+
+
+def test_compact_descriptor_shape_and_determinism():
+    vgg = shared_vgg()
+    images = torch.rand(2, 3, 64, 64, generator=torch.Generator().manual_seed(1))
+    with torch.no_grad():
+        a = compact_descriptor(vgg, images, size=64)
+        b = compact_descriptor(vgg, images, size=64)
+    assert a.shape == (2, DESCRIPTOR_DIM) == (2, 2944)
+    assert torch.isfinite(a).all()
+    assert torch.equal(a, b)
+    d = descriptor_distance(a, b)
+    assert d.shape == (2, 2) and d[0, 0] == 0 and d[0, 1] > 0
+
+
+def test_bank_nearest_neighbour_finds_the_sample_itself(tmp_path):
+    path = build_bank("plaster", n=3, size=64, directory=tmp_path)
+    assert path == tmp_path / "plaster.bank.pt"
+    bank = torch.load(path, weights_only=True)
+    assert bank["descriptors"].shape == (3, DESCRIPTOR_DIM) and bank["thetas"].shape[0] == 3
+    assert bank_is_current("plaster", tmp_path) and load_bank("marble", tmp_path) is None
+    space = SampleSpace("plaster")
+    theta = space.vector(1)
+    assert torch.allclose(bank["thetas"][1], theta)
+    image = render_images(space.graph, theta[None], bank["seed"], 64)
+    hits = nearest(bank, describe(image, size=64), count=3)
+    assert hits[0]["index"] == 1 and hits[0]["distance"] < 5e-3
+    assert hits[1]["distance"] > 10 * hits[0]["distance"]
+    assert torch.equal(hits[0]["theta"], bank["thetas"][1])
+
+
+def test_predictor_forward_range_and_weights_only_round_trip(tmp_path):
+    torch.manual_seed(0)
+    model = ParamPredictor(DESCRIPTOR_DIM, 7, hidden=16).eval()
+    model.mask.copy_(torch.tensor([1, 1, 0, 1, 0, 1, 1], dtype=torch.bool))
+    model.default.copy_(torch.linspace(0, 1, 7))
+    x = torch.randn(5, DESCRIPTOR_DIM) * 3
+    with torch.no_grad():
+        y = model(x)
+    assert y.shape == (5, 7) and (y >= 0).all() and (y <= 1).all()
+    assert torch.equal(y[:, 2], torch.full((5,), model.default[2].item()))
+    meta = {"graph": "plaster", "descriptor_dim": DESCRIPTOR_DIM, "params": 7, "hidden": 16, "layers": 2}
+    save_predictor(model, "plaster", meta, tmp_path)
+    state = torch.load(tmp_path / "plaster.predictor.pt", weights_only=True)
+    assert state["net.0.weight"].dtype == torch.float16
+    loaded = load_predictor("plaster", tmp_path)
+    with torch.no_grad():
+        assert torch.allclose(loaded(x), y, atol=2e-3)
+    assert not predictor_is_current("plaster", tmp_path)  # no graph hash recorded: stale
+
+
+def test_parameter_training_lowers_the_parameter_loss(monkeypatch):
+    monkeypatch.setattr(predictor, "LR", 3e-3)  # the real rate learns over hundreds of steps, not 36
+    gen = torch.Generator().manual_seed(0)
+    P, n = 6, 96
+    truth = torch.rand(n, P, generator=gen)
+    signal = truth.repeat(1, 40)  # the parameters, spread over 240 of the descriptor's dimensions
+    x = torch.cat([signal, torch.zeros(n, DESCRIPTOR_DIM - signal.shape[1])], dim=1) \
+        + 0.01 * torch.randn(n, DESCRIPTOR_DIM, generator=gen)
+    model = ParamPredictor(DESCRIPTOR_DIM, P, hidden=32)
+    model.in_mean.copy_(x[:80].mean(0))
+    model.in_std.copy_(x[:80].std(0).clamp_min(0.05))
+    mask = torch.ones(P, dtype=torch.bool)
+    with torch.no_grad():
+        before = float(masked_l1(model.eval()(x[80:]), truth[80:], mask))
+    after = fit_params(model, x[:80], truth[:80], x[80:], truth[80:], mask, 12, None, None, 0)
+    assert after < 0.85 * before
+
+
+def test_the_final_choice_prefers_the_simpler_graph_on_a_near_tie():
+    entries = [{"graph": "big", "distance": 1.000, "nodes": 40, "params": 120},
+               {"graph": "small", "distance": 1.015, "nodes": 25, "params": 60},
+               {"graph": "fewer_params", "distance": 1.010, "nodes": 25, "params": 50},
+               {"graph": "far", "distance": 1.3, "nodes": 10, "params": 10}]
+    assert [e["graph"] for e in order_by_simplicity(entries)] == ["fewer_params", "small", "big", "far"]
+    clear = [dict(entries[0], distance=0.9), *entries[1:]]
+    assert order_by_simplicity(clear)[0]["graph"] == "big"
+
+
+def test_missing_models_say_how_to_create_them(tmp_path):
+    with pytest.raises(NoSelectionModels, match="blender-match train --all"):
+        rank_graphs(torch.rand(1, 3, 64, 64), directory=tmp_path)
+    assert "blender-match train --all" in NO_MODELS
+
+
+def test_the_library_is_trained_and_indexed():
+    names = library_names()
+    assert len(names) >= 16
+    missing = [n for n in names if not (predictor_is_current(n) and bank_is_current(n))]
+    assert not missing, f"stale or missing selection models: {missing} (blender-match train --all)"
+    assert available_models("both") == names
+    from blender_match.library import library_entry
+    from blender_match.selection.bank import MODELS_DIR
+
+    for name in names:
+        meta = json.loads((MODELS_DIR / f"{name}.predictor.json").read_text())
+        assert meta["params"] == library_entry(name)["params_optimizable"]
+        assert meta["descriptor_dim"] == DESCRIPTOR_DIM and meta["training_samples"] > 0
+    total = sum(p.stat().st_size for p in MODELS_DIR.glob("*.pt"))
+    assert total < 50 * 2 ** 20
+
+
+def _synthetic_photo(tmp_path, name="marble", k=100_003, seed=300_001):
+    from blender_match.image_files import write_png
+
+    space = SampleSpace(name)
+    image = render_images(space.graph, space.vector(k)[None], seed, 128)
+    path = tmp_path / f"{name}.png"
+    write_png(path, image)
+    return path
+
+
+def test_match_without_a_graph_selects_fits_and_reports(tmp_path):
+    from blender_match.pipeline import MatchOptions, match_photo
+
+    photo = _synthetic_photo(tmp_path)
+    events = []
+    report = match_photo(photo, tmp_path / "out", MatchOptions(size=64, quality="draft", iterations=2),
+                         progress=events.append)
+    saved = json.loads((tmp_path / "out" / "report.json").read_text())
+    assert saved["graph"] == report["graph"]
+    ranking = saved["ranking"]
+    assert sorted(e["graph"] for e in ranking) == library_names()
+    assert all(e["distance"] >= 0 for e in ranking)
+    distances = [e["distance"] for e in ranking]
+    assert distances == sorted(distances)  # by distance alone: simplicity only picks among the fitted
+    fitted = saved["fitted"]
+    assert len(fitted) == 3 and [f["graph"] for f in fitted] == [e["graph"] for e in ranking[:3]]
+    assert all(f["iterations"] >= 1 and f["loss_final"] >= 0 and f["seconds"] >= 0 for f in fitted)
+    # each graph's loss says how it was measured (a graph dropped after the probe: the probe's size)
+    assert all(f["loss_final"] == f["rounds"][-1]["loss_final"] and f["rounds"][-1]["measured_at"]["size"] > 0
+               for f in fitted)
+    assert saved["graph"] in [f["graph"] for f in fitted]
+    assert (tmp_path / "out" / "basecolor.png").is_file()
+    stages = [e["stage"] for e in events]
+    assert "selecting" in stages and "fitting" in stages
+    fitting = [e for e in events if e["stage"] == "fitting" and "loss" in e]
+    assert fitting and all(e["graph_count"] == 3 and 1 <= e["graph_index"] <= 3 for e in fitting)
+    assert [e["fraction"] for e in events] == sorted(e["fraction"] for e in events)
+    selecting = [e["fraction"] for e in events if e["stage"] == "selecting"]
+    assert selecting[-1] > selecting[0]  # the bar moves while the library is ranked
+
+
+def test_match_with_a_named_graph_reports_its_start(tmp_path):
+    from blender_match.pipeline import MatchOptions, match_photo
+
+    photo = _synthetic_photo(tmp_path)
+    report = match_photo(photo, tmp_path / "out", MatchOptions(graph="marble", size=64, quality="draft", iterations=1))
+    assert report["start"] in ("default", "predicted", "bank")
+    assert json.loads((tmp_path / "out" / "report.json").read_text())["start"] == report["start"]
+
+
+def test_train_command_writes_models_and_skips_up_to_date_graphs(tmp_path, capsys):
+    from blender_match.cli import main
+
+    argv = ["train", "--graph", "plaster", "--models", str(tmp_path), "--samples", "10", "--bank", "2",
+            "--epochs", "2", "--render-steps", "1", "--keep-data"]
+    assert main(argv) == 0
+    meta = json.loads((tmp_path / "plaster.predictor.json").read_text())
+    assert meta["training_samples"] + meta["validation_samples"] == 10 and meta["bank_samples"] == 2
+    assert meta["descriptor_dim"] == DESCRIPTOR_DIM and meta["dtype"] == "float16"
+    assert {"val_param_error", "val_param_error_default", "graph_sha256", "seconds"} <= set(meta)
+    assert predictor_is_current("plaster", tmp_path) and bank_is_current("plaster", tmp_path)
+    assert load_bank("plaster", tmp_path)["descriptors"].shape == (2, DESCRIPTOR_DIM)
+    assert (tmp_path / "plaster.train.pt").is_file()  # --keep-data
+    assert main(argv) == 0
+    assert "plaster: up to date (skipped)" in capsys.readouterr().out
+    # --resume --force re-trains on the kept examples without rendering them again
+    data = torch.load(tmp_path / "plaster.train.pt", weights_only=True)
+    assert main(argv + ["--resume", "--force"]) == 0
+    again = torch.load(tmp_path / "plaster.train.pt", weights_only=True)
+    assert torch.equal(again["descriptors"], data["descriptors"]) and again["seconds"] == data["seconds"]

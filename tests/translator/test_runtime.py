@@ -1,0 +1,57 @@
+"""SbsGraph's evaluation plan: binding, exposing and mode changes rebuild it, and a bound node
+fed by a trainable exposed parameter is never cached."""
+from __future__ import annotations
+
+import pytest
+import torch
+
+from blender_match.diffmat.functional import function_graph as fg
+from blender_match.translator.runtime import SbsGraph
+
+
+def bound_graph() -> SbsGraph:
+    g = SbsGraph("bound")
+    g.expose("level", 0.25)
+    g.add("color", "uniform", outputcolor=(0.2, 0.4, 0.6, 1.0))
+    g.set_output("basecolor", "color")
+    return g
+
+
+def getter() -> dict:
+    return {"nodes": {"0": {"function": "get_float1", "inputs": {}, "data": "level"},
+                      "1": {"function": "vector4", "inputs": {"componentsin": "2", "componentslast": "0"}},
+                      "2": {"function": "const_float3", "inputs": {}, "data": [0.1, 0.2, 0.3]}},
+            "root": "1"}
+
+
+def test_bind_and_mode_changes_rebuild_the_plan():
+    g = bound_graph()
+    plan = g.plan()
+    g.bind("color", "outputcolor", getter())
+    assert g.plan() is not plan
+    assert "color" not in g.plan().static  # fed by a trainable exposed parameter
+    out = g(size=4)["basecolor"]
+    torch.testing.assert_close(out[0, :, 0, 0], torch.tensor([0.1, 0.2, 0.3, 0.25]))
+    plan = g.plan()
+    g.set_mode("exposed")
+    assert g.plan() is not plan
+    g.freeze("exposed")
+    assert "color" in g.plan().static  # frozen exposed parameters: cacheable
+    g.expose("other", 0.5)
+    assert g.plan().num_params == 1 and fg.variables_of(getter()) == {"level"}
+
+
+def test_theta_drives_the_bound_parameter():
+    g = bound_graph()
+    g.bind("color", "outputcolor", getter())
+    g.set_mode("exposed")
+    out = g(size=4, theta=torch.tensor([[0.5], [1.0]]))["basecolor"]
+    torch.testing.assert_close(out[:, 3, 0, 0], torch.tensor([0.5, 1.0]))
+
+
+def test_a_binding_is_compiled_once(monkeypatch):
+    g = bound_graph()
+    g.bind("color", "outputcolor", getter())
+    monkeypatch.setattr(fg, "_compile_node", lambda nid, node: pytest.fail("compiled again"))
+    g(size=4)
+    g(size=4, theta=g.get_vector()[None])

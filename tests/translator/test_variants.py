@@ -1,0 +1,134 @@
+"""Identifier and name variants found in real production .sbs files (hand-written snippets, not
+copies): parameter identifiers of other library versions, vector parameters spread over several
+spec parameters, legacy value ranges, input-slot spellings, library-name spellings."""
+from __future__ import annotations
+
+import math
+
+import pytest
+import sbs_snippets as W
+import torch
+
+from blender_match.diffmat import get_spec
+from blender_match.translator import aliases, translate
+
+SIZE = 32
+
+
+def _write(tmp_path, text, name="doc.sbs"):
+    path = tmp_path / name
+    path.write_text(text)
+    return path
+
+
+def _one_instance(tmp_path, graph_name, params, dep="sbs://lib.sbs", out_ident="output", conns=(), extra=()):
+    nodes = [W.instance_node(10, f"pkg:///{graph_name}?dependency=3", params=params, conns=conns,
+                             outputs=[(11, out_ident, 2)]), *extra, W.output_node(20, 100, 10, 11)]
+    doc = W.package([W.graph("G", nodes, outputs=[(100, "h", "height")])], dependencies=[(3, dep)])
+    return translate(_write(tmp_path, doc))
+
+
+def _values(t, spec_name):
+    node = next(n for n in t.graph.nodes.values() if n.spec.name == spec_name)
+    out = dict(node.fixed)
+    for k, v in node.values().items():
+        v = v.detach().flatten().tolist()
+        out[k] = v[0] if len(v) == 1 else v
+    return out, node
+
+
+def test_normalisation_and_resolution_rules():
+    assert aliases.norm("Luminance_Variation-Contrast") == "luminance_variation_contrast"
+    tile = get_spec("tile_generator")
+    assert aliases.resolve_param(tile, "Pattern_Size") == [("size_xy", None)]
+    assert aliases.resolve_param(tile, "position_offset") == [("offset", None)]
+    assert aliases.resolve_param(tile, "X_Amount") == [("x_amount", None)]
+    assert aliases.resolve_param(tile, "no_such_thing") == []
+    scratches = get_spec("scratches_generator")
+    assert aliases.resolve_param(scratches, "scratches_width") == [("width", None)]   # node-word prefix
+    levels = get_spec("levels")
+    assert aliases.resolve_param(levels, "Level-In-Low") == [("levelinlow", None)]   # underscores squashed
+    assert aliases.resolve_input(get_spec("histogram_scan"), "Input1") == "input_1"
+    assert aliases.resolve_input(get_spec("levels"), "Input_1") == "input1"
+    assert aliases.convert_value("crystal_1", "disorder", "Disorder", 50.0) == 0.5
+    assert aliases.convert_value("crystal_1", "disorder", "disorder", 0.3) == 0.3
+    assert aliases.convert_value("gradient_linear_1", "rotation", "rotation", 1) == 0.25
+    assert aliases.convert_value("gradient_linear_1", "rotation", "rotation", 0.5) == 0.5
+
+
+def test_shape_size_and_legacy_noise_distance(tmp_path):
+    t = _one_instance(tmp_path, "shape", [W.param("Size", "constantValueFloat1", 0.4),
+                                          W.param("Rotation", "constantValueBool", 1)], out_ident="Simple_Shape")
+    assert t.report["params_dropped"] == 0 and not t.report["params_dropped_names"]
+    vals, _ = _values(t, "shape")
+    assert math.isclose(vals["scale"], 0.4, abs_tol=1e-6)
+    assert vals["rotation_45"] is True
+    t = _one_instance(tmp_path, "perlin_noise_zoom", [W.param("Distance", "constantValueInt32", 6),
+                                                      W.param("Disorder", "constantValueFloat1", 34.0)],
+                      out_ident="Noise_Zoom")
+    vals, _ = _values(t, "perlin_noise_zoom")
+    assert math.isclose(vals["scale"], 6.0, abs_tol=1e-5) and math.isclose(vals["disorder"], 0.34, abs_tol=1e-5)
+    assert torch.isfinite(t.graph(size=SIZE)["height"]).all()
+
+
+def test_vector_parameter_spread_over_components(tmp_path):
+    t = _one_instance(tmp_path, "brick_generator", [W.param("Bricks", "constantValueInt2", "3 9"),
+                                                    W.param("Bevel", "constantValueFloat4", "0.1 0.2 1 1")],
+                      out_ident="Bricks_Generator")
+    vals, _ = _values(t, "brick_generator")
+    assert (vals["x_amount"], vals["y_amount"]) == (3, 9) and math.isclose(vals["bevel"], 0.1, abs_tol=1e-5)
+    assert t.report["params_dropped"] == 0
+    assert t.graph(size=SIZE)["height"].shape == (1, 1, SIZE, SIZE)
+
+
+def test_exact_identifier_wins_over_alias(tmp_path):
+    t = _one_instance(tmp_path, "tile_generator", [W.param("pattern_size", "constantValueFloat2", "0.3 0.3"),
+                                                   W.param("size_xy", "constantValueFloat2", "0.7 0.7")],
+                      out_ident="TileGenerator")
+    vals, _ = _values(t, "tile_generator")
+    assert vals["size_xy"] == pytest.approx([0.7, 0.7], abs=1e-5)
+
+
+def test_quarter_turn_rotation_and_old_tile_identifiers(tmp_path):
+    t = _one_instance(tmp_path, "gradient_linear_1", [W.param("rotation", "constantValueInt32", 1)],
+                      out_ident="Simple_Gradient")
+    vals, _ = _values(t, "gradient_linear_1")
+    assert math.isclose(vals["rotation"], 0.25, abs_tol=1e-6)
+    t = _one_instance(tmp_path, "tile_generator",
+                      [W.param("Luminance_Variation-Contrast", "constantValueFloat2", "0.34 0"),
+                       W.param("Pattern_Specific", "constantValueFloat2", "0.09 0")], out_ident="TileGenerator")
+    vals, _ = _values(t, "tile_generator")
+    assert math.isclose(vals["luminance_random"], 0.34, abs_tol=1e-5)
+    assert math.isclose(vals["pattern_specific"], 0.09, abs_tol=1e-5)
+
+
+def test_input_slot_spellings(tmp_path):
+    src = W.filter_node(5, "uniform", params=[W.param("outputcolor", "constantValueFloat4", "0.3 0.3 0.3 1"),
+                                              W.param("colorswitch", "constantValueBool", 0)], outputs=[(6, 2)])
+    t = _one_instance(tmp_path, "histogram_scan", [W.param("Position", "constantValueFloat1", 0.2)],
+                      out_ident="Output", conns=[("Input1", 5, 6)], extra=[src])
+    assert not any("connection dropped" in w for w in t.report["warnings"])
+    node = next(n for n in t.graph.nodes.values() if n.spec.name == "histogram_scan")
+    assert node is not None
+
+
+@pytest.mark.parametrize("name,expected", [("directional_noise", "directionnal_noise"),
+                                           ("perlin_noise_zoom_legacy", "perlin_noise_zoom"),
+                                           ("curvature_smooth_v2", "curvature_smooth")])
+def test_library_name_spellings(tmp_path, name, expected):
+    t = _one_instance(tmp_path, name, [])
+    assert t.report["nodes_passthrough"] == 0
+    assert any(n.spec.name == expected for n in t.graph.nodes.values())
+
+
+def test_colour_twin_is_an_approximation(tmp_path):
+    src = W.filter_node(5, "uniform", params=[W.param("outputcolor", "constantValueFloat4", "0.3 0.6 0.3 1")],
+                        outputs=[(6, 1)])
+    nodes = [src, W.instance_node(10, "pkg:///blur_hq_color?dependency=3", conns=[("Source", 5, 6)],
+                                  outputs=[(11, "Blur_HQ", 1)]),
+             W.output_node(20, 100, 10, 11)]
+    doc = W.package([W.graph("G", nodes, outputs=[(100, "c", "baseColor")])], dependencies=[(3, "sbs://blur_hq.sbs")])
+    t = translate(_write(tmp_path, doc))
+    assert t.report["nodes_passthrough"] == 0
+    assert any("approximated" in w for w in t.report["warnings"])
+    assert torch.isfinite(t.graph(size=SIZE)["basecolor"]).all()
