@@ -154,7 +154,7 @@ def _opened(path: Path) -> Iterator[ImageFile.ImageFile]:
         except UnidentifiedImageError:
             raise PhotoError(f"{path}: not an image file that can be read (unknown or damaged "
                              "format)") from None
-        except Exception as exc:  # Pillow's format plugins raise many types for bad headers
+        except Exception as exc:  # noqa: BLE001 - Pillow's format plugins raise many types for bad headers
             raise PhotoError(f"{path}: cannot read the image ({_one_line(exc)})") from None
         with img:
             yield img
@@ -164,7 +164,7 @@ def _decode(path: Path, img: ImageFile.ImageFile) -> np.ndarray:
     """The pixels, upright, as an (H, W, C) array: uint8, uint16 or float32."""
     try:
         pixels = _deep_colour(path, img) if _is_deep_colour(img) else _pixels(img)
-    except Exception as exc:  # truncated or damaged data: Pillow's decoders raise many types
+    except Exception as exc:  # noqa: BLE001 - truncated or damaged data: Pillow's decoders raise many types
         raise PhotoError(f"{path}: cannot read the image ({_one_line(exc)})") from None
     return _UPRIGHT.get(_orientation(img), np.asarray)(pixels)
 
@@ -215,7 +215,7 @@ def _orientation(img: Image.Image) -> int:
         return 1
     try:
         return int(img.getexif().get(ExifTags.Base.Orientation, 1))
-    except Exception:  # damaged EXIF must not make the photo unreadable
+    except Exception:  # noqa: BLE001 - damaged EXIF must not make the photo unreadable
         return 1
 
 

@@ -163,7 +163,7 @@ def run_target(target: Target, config: Config, graphs, descriptor, selection, de
             rows.append({**base, "status": "unavailable", "error": str(exc)})
             _log(f"{target.name} {method}: unavailable ({exc})", started)
             continue
-        except Exception as exc:  # a crash is a result here: it is classified "failed"
+        except Exception as exc:  # noqa: BLE001 - a crash is a result here: it is classified "failed"
             rows.append({**base, "status": "failed", "error": f"{type(exc).__name__}: {exc}",
                          "traceback": traceback.format_exc(limit=4)})
             _log(f"{target.name} {method}: {type(exc).__name__}: {exc}", started)

@@ -224,7 +224,7 @@ def run(device: str = "cpu", photos=None, quick: bool = False, quality: str | No
             photo = load_photo(path, PHOTO_SIZE)
             fields, render = evaluate(photo, options)
             row |= fields | {"family_match": fields["graph"] in families.get(category, ())}
-        except Exception as exc:  # one photo's failure is its row's, not the run's
+        except Exception as exc:  # noqa: BLE001 - one photo's failure is its row's, not the run's
             row["error"] = f"{type(exc).__name__}: {exc}"
         rows.append(row)
         entries.append((photo, render, row))

@@ -83,7 +83,7 @@ class Channel:
             self._held = None
             self._last_progress, self._last_stage = now, stage
             self.send(protocol.progress_event(dict(event)))
-        except Exception:  # a progress report must never stop the job
+        except Exception:  # noqa: BLE001 - a progress report must never stop the job
             traceback.print_exc()
 
 
@@ -157,7 +157,7 @@ def probe() -> dict:
                 packages[name] = importlib.metadata.version(name)
             except importlib.metadata.PackageNotFoundError:
                 packages[name] = getattr(imported, "__version__", None)
-        except Exception as exc:  # installed but broken: show it, the job will fail clearly
+        except Exception as exc:  # noqa: BLE001 - installed but broken: show it, the job will fail clearly
             packages[name] = f"unusable: {protocol.one_line(str(exc), 200)}"
     return {
         "python": sys.executable,

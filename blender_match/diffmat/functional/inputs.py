@@ -50,7 +50,7 @@ def load_image(path: str) -> torch.Tensor:
                 rgba = np.asarray(img.convert("RGBA"), dtype=np.float32) / 255.0
     except DiffMatError:
         raise
-    except Exception as exc:  # PIL raises many types for unreadable data
+    except Exception as exc:  # noqa: BLE001 - PIL raises many types for unreadable data
         raise DiffMatError(f"bitmap: cannot read image file {path!r}: {exc}") from None
     if gray is not None:
         g = torch.from_numpy(np.clip(gray, 0.0, 1.0).copy())[None, None]
