@@ -6,7 +6,7 @@ import pytest
 import torch
 
 from blender_match.diffmat.functional import function_graph as fg
-from blender_match.translator.runtime import SbsGraph
+from blender_match.translator.runtime import SbsGraph, fit_width
 
 
 def bound_graph() -> SbsGraph:
@@ -55,3 +55,29 @@ def test_a_binding_is_compiled_once(monkeypatch):
     monkeypatch.setattr(fg, "_compile_node", lambda nid, node: pytest.fail("compiled again"))
     g(size=4)
     g(size=4, theta=g.get_vector()[None])
+
+
+def colour3(values) -> dict:
+    return {"nodes": {"0": {"function": "const_float3", "inputs": {}, "data": list(values)}}, "root": "0"}
+
+
+def test_a_float3_function_bound_to_an_rgba_parameter_keeps_its_alpha():
+    """A production file binds Replace Color's target colour (RGBA here) to a float3 function;
+    Substance accepts it, and so do we: the missing alpha keeps the parameter's default."""
+    g = SbsGraph("widths")
+    g.add("color", "uniform", outputcolor=(0.5, 0.5, 0.5, 1.0))
+    g.add("swap", "replace_color", {"input": "color"}, sourcecolor=(0.5, 0.5, 0.5, 1.0))
+    g.bind("swap", "targetcolor", colour3([0.8, 0.3, 0.1]))
+    g.set_output("basecolor", "swap")
+    out = g(size=4)["basecolor"][0, :, 0, 0]
+    assert torch.isfinite(out).all()
+    assert out[0] > out[1] > out[2]  # the warm target colour arrives, not a refusal or a grey
+    torch.testing.assert_close(out[3], torch.tensor(1.0))
+
+
+def test_fit_width_broadcasts_truncates_and_pads_from_the_default():
+    torch.testing.assert_close(fit_width(torch.tensor([0.3]), 3, (0.0, 0.0, 0.0)), torch.tensor([0.3, 0.3, 0.3]))
+    torch.testing.assert_close(fit_width(torch.tensor([1.0, 2.0, 3.0, 4.0]), 3, 0.0), torch.tensor([1.0, 2.0, 3.0]))
+    torch.testing.assert_close(fit_width(torch.tensor([[0.1, 0.2, 0.3]]), 4, (0.5, 0.5, 0.5, 1.0)),
+                               torch.tensor([[0.1, 0.2, 0.3, 1.0]]))
+    torch.testing.assert_close(fit_width(torch.tensor([0.1, 0.2]), 4, 0.5), torch.tensor([0.1, 0.2, 0.5, 0.5]))
