@@ -35,8 +35,17 @@ def _deterministic():
     yield
 
 
-@pytest.fixture
+@pytest.fixture(scope="session")
 def shared_dir() -> Path:
     if not SHARED.is_dir():
         pytest.fail(f"../shared not found at {SHARED}: the tests read real data from it")
     return SHARED
+
+
+@pytest.fixture(scope="session")
+def plaster_photo(shared_dir: Path) -> Path:
+    """The real flash photo of a plaster wall that the Blender sessions match."""
+    photo = shared_dir / "data" / "photos" / "real_plaster_wall_beige_desch18.png"
+    if not photo.is_file():
+        pytest.fail(f"{photo}: the shared test photo is missing")
+    return photo

@@ -23,13 +23,11 @@ from pathlib import Path
 
 import pytest
 from blender_session import run_blender_script
-from conftest import SHARED
 
 from blender_match.cli import main
 
 pytestmark = pytest.mark.slow  # one Blender session installs the built extension and runs jobs
 
-PHOTO = SHARED / "data" / "photos" / "real_plaster_wall_beige_desch18.png"
 
 SESSION = textwrap.dedent(r"""
     import importlib, json, os, signal, sys, time
@@ -240,15 +238,13 @@ SESSION = textwrap.dedent(r"""
 
 
 @pytest.fixture(scope="module")
-def session(tmp_path_factory) -> dict:
-    if not PHOTO.is_file():
-        pytest.fail(f"{PHOTO}: the shared test photo is missing")
+def session(tmp_path_factory, plaster_photo) -> dict:
     dist = tmp_path_factory.mktemp("dist")
     assert main(["build-extension", "--out", str(dist)]) == 0
     [zip_path] = dist.glob("*.zip")
     work = tmp_path_factory.mktemp("work")
     env = {**os.environ, "BLENDER_USER_RESOURCES": str(work / "blender-user")}
-    out = run_blender_script(SESSION, [str(zip_path), str(PHOTO), str(work)], work, env, timeout=900)
+    out = run_blender_script(SESSION, [str(zip_path), str(plaster_photo), str(work)], work, env, timeout=900)
     out["work"] = str(work)
     return out
 
@@ -388,8 +384,8 @@ def test_worker_error_and_missing_backend_cancel_with_a_clear_message(session):
     assert "does not exist" in missing["error"] and missing["same"]
 
 
-def test_an_image_datablock_as_the_photo(session):
-    assert session["image_on_disk"] == [str(PHOTO), False]  # its own file, unchanged on disk
+def test_an_image_datablock_as_the_photo(session, plaster_photo):
+    assert session["image_on_disk"] == [str(plaster_photo), False]  # its own file, unchanged on disk
     assert session["image_generated"] == [True, ".png", [32, 16]]  # written to a temporary PNG
 
 

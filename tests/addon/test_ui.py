@@ -26,12 +26,11 @@ import textwrap
 
 import pytest
 from blender_session import run_blender_script
-from conftest import ROOT, SHARED
+from conftest import ROOT
 
 from blender_match.errors import OptionError
 from blender_match.library.thumbnails import write_thumbnails
 
-PHOTO = SHARED / "data" / "photos" / "real_plaster_wall_beige_desch18.png"
 GRAPHS = ROOT / "blender_match" / "library" / "graphs"
 
 SESSION = textwrap.dedent(r"""
@@ -232,13 +231,11 @@ SESSION = textwrap.dedent(r"""
 
 
 @pytest.fixture(scope="module")
-def session(tmp_path_factory) -> dict:
-    if not PHOTO.is_file():
-        pytest.fail(f"{PHOTO}: the shared test photo is missing")
+def session(tmp_path_factory, plaster_photo) -> dict:
     work = tmp_path_factory.mktemp("ui")
     env = {**os.environ, "BLENDER_USER_RESOURCES": str(work / "blender-user"),
            "PYTHONPATH": os.pathsep.join([str(ROOT), os.environ.get("PYTHONPATH", "")]).rstrip(os.pathsep)}
-    return run_blender_script(SESSION, [str(PHOTO)], work, env, timeout=600)
+    return run_blender_script(SESSION, [str(plaster_photo)], work, env, timeout=600)
 
 
 def _ops(drawn) -> list[str]:
