@@ -138,23 +138,37 @@ def test_hsl_identity():
 
 
 def test_hsl_hue_shift():
+    """Hue shifts by (2 hue - 1) turns: a third of a turn is hue 0.5 +/- 1/6."""
     red = _rgb(1.0, 0.0, 0.0)
-    torch.testing.assert_close(F.hsl(red, hue=0.5 + 1 / 3), _rgb(0.0, 1.0, 0.0), atol=1e-5, rtol=0)
-    torch.testing.assert_close(F.hsl(red, hue=0.5 - 1 / 3), _rgb(0.0, 0.0, 1.0), atol=1e-5, rtol=0)
-    # a half-turn gives the complement
-    torch.testing.assert_close(F.hsl(_rgb(0.8, 0.4, 0.2), hue=1.0), _rgb(0.2, 0.6, 0.8), atol=1e-5, rtol=0)
+    torch.testing.assert_close(F.hsl(red, hue=0.5 + 1 / 6), _rgb(0.0, 1.0, 0.0), atol=1e-5, rtol=0)
+    torch.testing.assert_close(F.hsl(red, hue=0.5 - 1 / 6), _rgb(0.0, 0.0, 1.0), atol=1e-5, rtol=0)
+    # a half-turn (hue 0.75 or 0.25) gives the complement
+    torch.testing.assert_close(F.hsl(_rgb(0.8, 0.4, 0.2), hue=0.75), _rgb(0.2, 0.6, 0.8), atol=1e-5, rtol=0)
+    torch.testing.assert_close(F.hsl(_rgb(0.8, 0.4, 0.2), hue=0.25), _rgb(0.2, 0.6, 0.8), atol=1e-5, rtol=0)
 
 
-def test_hsl_saturation_and_lightness():
+@pytest.mark.parametrize("hue", [0.0, 0.5, 1.0])
+def test_hsl_at_hue_0_half_and_1_keeps_a_warm_colour_warm(hue):
+    """The regression of production materials (bronze, cork, corten) turned blue: hue 0 and 1 are
+    whole turns, not half turns."""
+    warm = _rgb(0.8, 0.4, 0.2)
+    out = F.hsl(warm, hue=hue)
+    torch.testing.assert_close(out, warm, atol=1e-5, rtol=0)
+    with torch.no_grad():
+        assert torch.equal(F.hsl(warm, hue=hue), out)  # the no-grad twin agrees
+
+
+def test_hsl_saturation_and_lightness_are_additive_and_clamped():
     c = _rgb(0.8, 0.4, 0.2)                                   # l = 0.5, s = 0.6
-    gray = F.hsl(c, saturation=0.0)
-    torch.testing.assert_close(gray, _rgb(0.5, 0.5, 0.5), atol=1e-5, rtol=0)
-    more = F.hsl(c, saturation=1.0)                            # s -> 0.6 (2 - 0.6) = 0.84
-    torch.testing.assert_close(more, _rgb(0.92, 0.36, 0.08), atol=1e-5, rtol=0)
+    torch.testing.assert_close(F.hsl(c, saturation=0.0), _rgb(0.5, 0.5, 0.5), atol=1e-5, rtol=0)
+    torch.testing.assert_close(F.hsl(c, saturation=0.6), _rgb(0.9, 0.366667, 0.1), atol=1e-5, rtol=0)  # s 0.8
+    torch.testing.assert_close(F.hsl(c, saturation=1.0), _rgb(1.0, 0.333333, 0.0), atol=1e-5, rtol=0)  # s 1
     torch.testing.assert_close(F.hsl(c, luminosity=0.0), _rgb(0.0, 0.0, 0.0), atol=1e-5, rtol=0)
     torch.testing.assert_close(F.hsl(c, luminosity=1.0), _rgb(1.0, 1.0, 1.0), atol=1e-5, rtol=0)
-    # grays stay gray when saturating
-    torch.testing.assert_close(F.hsl(_rgb(0.3, 0.3, 0.3), saturation=1.0), _rgb(0.3, 0.3, 0.3), atol=1e-6, rtol=0)
+    torch.testing.assert_close(F.hsl(c, luminosity=0.6), _rgb(0.88, 0.64, 0.52), atol=1e-5, rtol=0)  # l 0.7
+    with torch.no_grad():
+        torch.testing.assert_close(F.hsl(c, saturation=0.6, luminosity=0.6),
+                                   F.hsl(c.requires_grad_(), saturation=0.6, luminosity=0.6).detach())
 
 
 def test_hsl_keeps_alpha_and_rejects_gray():

@@ -200,10 +200,11 @@ def _hsl_to_rgb(hue, sat, light):
 def hsl(input1: torch.Tensor, *, hue=0.5, saturation=0.5, luminosity=0.5) -> torch.Tensor:
     """Hue / saturation / lightness adjustment of a colour image (0.5 = unchanged; alpha kept).
 
-    In HSL space: hue h + (hue - 0.5) turns; saturation s x 2 sat for sat <= 0.5 (0 = gray) and
-    s (1 + (1 - s)(2 sat - 1)) above (1 gives s (2 - s): grays stay gray); lightness l x 2 lum for
-    lum <= 0.5 (0 = black) and l + (1 - l)(2 lum - 1) above (1 = white). Substance documents the
-    direction of each slider, not its exact curve.
+    In HSL space: hue h + (2 hue - 1) turns (0, 0.5 and 1 all leave it unchanged: the slider runs
+    from one full turn back to one full turn forward); saturation s + (2 sat - 1) and lightness
+    l + (2 lum - 1), each clamped to [0, 1] (sat 0 = gray, lum 0 = black, lum 1 = white). These
+    are the semantics of the MATch paper's public reference implementation, which its authors
+    validated against Substance's renders (docs/engine.md, "HSL").
     """
     x = check_image(input1, "hsl.input1", (COLOR,))
     dh = param4d(hue, x)
@@ -217,13 +218,9 @@ def hsl(input1: torch.Tensor, *, hue=0.5, saturation=0.5, luminosity=0.5) -> tor
             and max(dh.shape[0], ds.shape[0], dl.shape[0]) <= x.shape[0]:
         return _hsl_nograd(x, dh, ds, dl)
     h, s, light = _rgb_to_hsl(x[:, :3])
-    h = h + dh - 0.5
-    # ds <= 0: s (1 + ds); above: s (1 + (1 - s) ds). dl <= 0: l (1 + dl); above: l + (1 - l) dl.
-    # The branch is chosen per batch item (a (B, 1, 1, 1) mask), not per pixel.
-    up_s = (ds > 0).to(ds.dtype)
-    up_l = (dl > 0).to(dl.dtype)
-    s = (s * (1 + ds * (1 - s * up_s))).clamp(0.0, 1.0)
-    light = (light + dl * (light + up_l * (1 - 2 * light))).clamp(0.0, 1.0)
+    h = h + 2 * dh - 1
+    s = (s + ds).clamp(0.0, 1.0)
+    light = (light + dl).clamp(0.0, 1.0)
     rgb = _hsl_to_rgb(h, s, light).clamp(0.0, 1.0)
     return torch.cat([rgb, x[:, 3:].expand(rgb.shape[0], -1, -1, -1)], dim=1)
 
@@ -262,11 +259,9 @@ def _hsl_nograd(x, dh, ds, dl):
         del is_g, is_b
         hue.mul_(colour.mul_(1.0 / 6.0))
         # adjustments (hsl)
-        h = hue.add_(dh).sub_(0.5)
-        up_s = (ds > 0).to(ds.dtype)
-        up_l = (dl > 0).to(dl.dtype)
-        s = sat.mul_((sat * up_s).neg_().add_(1.0).mul_(ds).add_(1.0)).clamp_(0.0, 1.0)
-        light.add_((light * 2).neg_().add_(1.0).mul_(up_l).add_(light).mul_(dl)).clamp_(0.0, 1.0)
+        h = hue.add_(dh, alpha=2.0).sub_(1.0)
+        s = sat.add_(ds).clamp_(0.0, 1.0)
+        light.add_(dl).clamp_(0.0, 1.0)
         # back to RGB (_hsl_to_rgb)
         a = torch.minimum(light, 1 - light).mul_(s)
         key = (h.device, h.dtype)

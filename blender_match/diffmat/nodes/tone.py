@@ -32,9 +32,9 @@ register(NodeSpec(
     "hsl", "atomic", F.hsl,
     inputs=(Input("input1", "color"),),
     params=(
-        Param("hue", 0.5, doc="hue shift: 0.5 none, 0 / 1 = -/+ half a turn"),
-        Param("saturation", 0.5, doc="0.5 unchanged, below desaturates, above saturates"),
-        Param("luminosity", 0.5, doc="0.5 unchanged, 0 black, 1 white"),
+        Param("hue", 0.5, doc="hue shift of (2 hue - 1) turns: 0, 0.5 and 1 leave the hue unchanged"),
+        Param("saturation", 0.5, doc="adds 2 saturation - 1 to the saturation (0.5 unchanged, 0 gray)"),
+        Param("luminosity", 0.5, doc="adds 2 luminosity - 1 to the lightness (0.5 unchanged, 0 black, 1 white)"),
     ),
     doc="HSL: adjusts hue, saturation and lightness of a colour image."))
 
