@@ -143,7 +143,7 @@ class SbsGraph(MaterialGraph):
                 if isinstance(value, str):
                     raise DiffMatError(f"{name}.{param}: the bound function returns a string")
                 k = module.theta[param].numel()
-                value = fit_width(value, k, p.default)
+                value = fgraph.fit_components(value, k, f"{name}.{param}", fill=p.default)
                 lo, hi = module.ranges[param]
                 override[param] = (value - lo) / (hi - lo) if hi > lo else torch.zeros_like(value)
             else:
@@ -177,26 +177,6 @@ class SbsGraph(MaterialGraph):
             return super().forward(size, seed, theta, cache)
         finally:
             self._batch = None
-
-
-def fit_width(value: torch.Tensor, k: int, default) -> torch.Tensor:
-    """A bound function's value (last axis: its components) made as wide as its parameter (``k``
-    components), as Substance converts between a function's vector type and a parameter's: one
-    component fills them all, extra components are dropped, and missing ones keep the
-    parameter's default (a float3 colour bound to an RGBA parameter keeps the default's alpha)."""
-    n = value.shape[-1]
-    if n == k:
-        return value
-    if n == 1:
-        return value.expand(*value.shape[:-1], k)
-    if n > k:
-        return value[..., :k]
-    base = torch.as_tensor(default, dtype=value.dtype, device=value.device).reshape(-1)
-    if base.numel() == 1:
-        base = base.expand(k)
-    elif base.numel() < k:
-        base = torch.cat([base, base.new_zeros(k - base.numel())])
-    return torch.cat([value, base[n:k].expand(*value.shape[:-1], k - n)], dim=-1)
 
 
 def _discrete(p, value, where: str):

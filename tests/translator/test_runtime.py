@@ -2,11 +2,14 @@
 fed by a trainable exposed parameter is never cached."""
 from __future__ import annotations
 
+from functools import partial
+
 import pytest
 import torch
 
+from blender_match.diffmat.errors import DiffMatError
 from blender_match.diffmat.functional import function_graph as fg
-from blender_match.translator.runtime import SbsGraph, fit_width
+from blender_match.translator.runtime import SbsGraph
 
 
 def bound_graph() -> SbsGraph:
@@ -75,9 +78,12 @@ def test_a_float3_function_bound_to_an_rgba_parameter_keeps_its_alpha():
     torch.testing.assert_close(out[3], torch.tensor(1.0))
 
 
-def test_fit_width_broadcasts_truncates_and_pads_from_the_default():
-    torch.testing.assert_close(fit_width(torch.tensor([0.3]), 3, (0.0, 0.0, 0.0)), torch.tensor([0.3, 0.3, 0.3]))
-    torch.testing.assert_close(fit_width(torch.tensor([1.0, 2.0, 3.0, 4.0]), 3, 0.0), torch.tensor([1.0, 2.0, 3.0]))
-    torch.testing.assert_close(fit_width(torch.tensor([[0.1, 0.2, 0.3]]), 4, (0.5, 0.5, 0.5, 1.0)),
+def test_fit_components_broadcasts_truncates_and_pads_from_the_default():
+    fit = partial(fg.fit_components, what="test")
+    torch.testing.assert_close(fit(torch.tensor([0.3]), 3, fill=(0.0, 0.0, 0.0)), torch.tensor([0.3, 0.3, 0.3]))
+    torch.testing.assert_close(fit(torch.tensor([1.0, 2.0, 3.0, 4.0]), 3, fill=0.0), torch.tensor([1.0, 2.0, 3.0]))
+    torch.testing.assert_close(fit(torch.tensor([[0.1, 0.2, 0.3]]), 4, fill=(0.5, 0.5, 0.5, 1.0)),
                                torch.tensor([[0.1, 0.2, 0.3, 1.0]]))
-    torch.testing.assert_close(fit_width(torch.tensor([0.1, 0.2]), 4, 0.5), torch.tensor([0.1, 0.2, 0.5, 0.5]))
+    torch.testing.assert_close(fit(torch.tensor([0.1, 0.2]), 4, fill=0.5), torch.tensor([0.1, 0.2, 0.5, 0.5]))
+    with pytest.raises(DiffMatError, match="test has 2 component"):  # no fill: a variable too narrow
+        fit(torch.tensor([0.1, 0.2]), 4)

@@ -423,14 +423,26 @@ def _compile_const(nid: str, fn: str, data, where: str) -> _Op:
     return const
 
 
-def _fit_components(t: torch.Tensor, n: int, what: str) -> torch.Tensor:
-    if t.shape[-1] == n:
+def fit_components(t: torch.Tensor, n: int, what: str, fill=None) -> torch.Tensor:
+    """``t`` (last axis: its components) made ``n`` components wide, as Substance converts between
+    vector types: one component fills them all and extra ones are dropped. Missing ones come from
+    ``fill`` (a number or the components of a default: a float3 colour bound to an RGBA parameter
+    keeps the default's alpha); without ``fill`` they are a DiffMatError naming ``what``."""
+    m = t.shape[-1]
+    if m == n:
         return t
-    if t.shape[-1] == 1:
+    if m == 1:
         return t.expand(*t.shape[:-1], n)
-    if t.shape[-1] > n:
+    if m > n:
         return t[..., :n]
-    raise _err(f"{what} has {t.shape[-1]} component(s), expected {n}")
+    if fill is None:
+        raise _err(f"{what} has {m} component(s), expected {n}")
+    base = torch.as_tensor(fill, dtype=t.dtype, device=t.device).reshape(-1)
+    if base.numel() == 1:
+        base = base.expand(n)
+    elif base.numel() < n:
+        base = torch.cat([base, base.new_zeros(n - base.numel())])
+    return torch.cat([t, base[m:n].expand(*t.shape[:-1], n - m)], dim=-1)
 
 
 def _compile_get(nid: str, fn: str, data, where: str) -> _Op:
@@ -445,7 +457,7 @@ def _compile_get(nid: str, fn: str, data, where: str) -> _Op:
             return _V(v if isinstance(v, str) else str(v), "string")
         if isinstance(v, str):
             raise _err(f"{where}: variable {data!r} holds a string")
-        return _V(_fit_components(_as_tensor(v, env.device, env.dtype), n, f"{where}: variable {data!r}"), kind)
+        return _V(fit_components(_as_tensor(v, env.device, env.dtype), n, f"{where}: variable {data!r}"), kind)
     return get
 
 
