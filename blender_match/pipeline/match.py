@@ -80,6 +80,14 @@ def fit_named_graph(graph: MaterialGraph, name: str | None, target: torch.Tensor
     return result, start, theta0.detach().cpu()
 
 
+def _fitting_progress(job: JobProgress, event: dict) -> None:
+    """One fitting step as a job-wide progress event: ``event`` holds the graph, its index and
+    count, the iteration of all ``iterations``, the loss and the time left."""
+    job.within(event["iteration"] / event["iterations"], event["eta_seconds"], graph=event["graph"],
+               graph_index=event["graph_index"], graph_count=event["graph_count"],
+               iteration=event["iteration"], iterations=event["iterations"], loss=round(event["loss"], 6))
+
+
 def _fit_named(job: JobProgress, target: torch.Tensor, options: MatchOptions, schedule: Schedule, photo_name: str,
                check_outputs: OutputsCheck | None) -> tuple[MaterialGraph, str, dict]:
     assert options.graph is not None
@@ -90,9 +98,8 @@ def _fit_named(job: JobProgress, target: torch.Tensor, options: MatchOptions, sc
     job.stage(FITTING, graph=graph.name, graph_index=1, graph_count=1)
 
     def on_step(event):
-        job.within(event["iteration"] / schedule.iterations, event["eta_seconds"], graph=graph.name,
-                   graph_index=1, graph_count=1, iteration=event["iteration"], iterations=schedule.iterations,
-                   loss=round(event["loss"], 6))
+        _fitting_progress(job, {**event, "graph": graph.name, "graph_index": 1, "graph_count": 1,
+                               "iterations": schedule.iterations})
 
     result, start, _ = fit_named_graph(graph, options.graph, target, schedule, options.seed, target.device,
                                        progress=on_step, cancel=job.cancel)
@@ -112,11 +119,6 @@ def _fit_auto(job: JobProgress, target: torch.Tensor, options: MatchOptions, sch
     def on_rank(event):
         job.within((event["graph_index"] - 1) / event["graph_count"], **event)
 
-    def on_fit(event):
-        job.within(event["iteration"] / event["iterations"], event["eta_seconds"], graph=event["graph"],
-                   graph_index=event["graph_index"], graph_count=event["graph_count"],
-                   iteration=event["iteration"], iterations=event["iterations"], loss=round(event["loss"], 6))
-
     materials: dict[str, MaterialGraph] = {}
     ranking = rank_graphs(target, "both", seed=options.seed, device=target.device, progress=on_rank,
                           cancel=job.cancel, materials=materials)
@@ -124,7 +126,8 @@ def _fit_auto(job: JobProgress, target: torch.Tensor, options: MatchOptions, sch
     job.stage(FITTING, graph=ranking[0]["graph"], graph_index=1, graph_count=min(k, len(ranking)))
     loss = photo_loss(target, target.device)
     best, fits = select_and_fit(loss, ranking, k, schedule, seed=options.seed, materials=materials,
-                                progress=on_fit, cancel=job.cancel)
+                                progress=lambda event: _fitting_progress(job, event),
+                                cancel=job.cancel)
     graph = best.material
     report = fit_report(graph, best.fitted, schedule, photo_name, options.quality, best.start)
     if check_outputs is not None:

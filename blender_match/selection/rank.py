@@ -123,7 +123,8 @@ def rank_graphs(photo: torch.Tensor, method: str = "both", *, seed: int = 0, dev
     photo = check_photo(photo).to(device)
     names = available_models(method, directory)
     if graphs is not None:
-        names = [n for n in names if n in set(graphs)]
+        wanted = set(graphs)
+        names = [n for n in names if n in wanted]
     if not names:
         raise NoSelectionModels(NO_MODELS.format(where=models_dir(directory)))
     vgg = shared_vgg(device)
