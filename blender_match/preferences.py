@@ -3,7 +3,8 @@ default device, and the buttons that set up the backend and test the worker.
 
 Matching needs a Python with torch (Blender's has none): either "Set up backend" creates one in
 the add-on's user folder (a virtual environment, torch from PyPI), or "Worker Python" names an
-existing one (a Python where ``pip install blender-match`` was done).
+existing one (a Python where ``pip install blender-match`` was done). "User Library" names the
+folder of the user's own materials (``blender-match library add``; ``addon.apply_user_library``).
 """
 
 import bpy
@@ -17,6 +18,10 @@ def draw_preferences(prefs, layout, context):
     """The preferences' layout (shared with the tests' layout recorder)."""
     layout.prop(prefs, "worker_python")
     layout.prop(prefs, "default_device")
+    layout.prop(prefs, "user_library")
+    users = [name for name, graph in addon.library_graphs().items() if graph["library"] == "user"]
+    layout.label(text=f"{len(users)} graph(s) of your own in {addon.user_library_dir()} "
+                      "(add them with: blender-match library add PATH.sbs|FOLDER)", icon='ASSET_MANAGER')
 
     box = layout.box()
     box.label(text="Backend", icon='CONSOLE')
@@ -57,6 +62,11 @@ class BLENDER_MATCH_AddonPreferences(bpy.types.AddonPreferences):
                     "(empty: the backend set up below)")
     default_device: EnumProperty(name="Default Device", items=addon.DEVICE_ITEMS, default=DEFAULT_DEVICE,
                                  description="Where matches run unless the panel says otherwise")
+    user_library: StringProperty(
+        name="User Library", subtype='DIR_PATH', update=lambda self, context: addon.apply_user_library(context),
+        description="Folder of your own .sbs materials (blender-match library add), searched by automatic "
+                    "matching together with the built-in library (empty: $BLENDER_MATCH_LIBRARY or the "
+                    "user-data folder)")
     pip_arguments: StringProperty(
         name="pip Arguments",
         description="Extra arguments for pip when setting up the backend (e.g. --index-url "
@@ -67,3 +77,7 @@ class BLENDER_MATCH_AddonPreferences(bpy.types.AddonPreferences):
 
 
 classes = (BLENDER_MATCH_AddonPreferences,)
+
+
+def register():
+    addon.apply_user_library()

@@ -2,14 +2,18 @@
 from __future__ import annotations
 
 import os
+import tempfile
 from pathlib import Path
 
 import pytest
 import torch
 
 from blender_match.allocator import keep_freed_memory
+from blender_match.library.catalog import USER_LIBRARY_ENV
 
 keep_freed_memory()  # as the command line and the worker do: the suite runs faster
+# the suite sees an empty user library of its own (subprocesses inherit it), never the developer's
+os.environ[USER_LIBRARY_ENV] = tempfile.mkdtemp(prefix="blender-match-user-library-")
 ROOT = Path(__file__).resolve().parents[1]
 SHARED = Path(os.environ.get("BLENDER_MATCH_SHARED", ROOT.parent / "shared"))
 

@@ -29,7 +29,7 @@ import torch
 from ..diffmat.descriptor import TextureDescriptor
 from ..diffmat.graph import MaterialGraph
 from ..diffmat.optim import TargetLoss
-from ..library import library_names, load_library_graph
+from ..library import builtin_names, load_library_graph
 from .accuracy_methods import METHODS, Selection, Unavailable, fit_sizes, run_method
 from .accuracy_metrics import CLASSIFICATION_RULE, Scorer, classify, finite
 from .accuracy_report import markdown
@@ -99,10 +99,10 @@ def machine() -> dict:
 
 
 def build_targets(config: Config, log=None) -> list[Target]:
-    names = list(config.graphs or library_names())
+    names = list(config.graphs or builtin_names())
     targets = [synthetic(name, k, config.size) for name in names for k in config.samples]
     if config.real != ():
-        known = library_names()
+        known = builtin_names()
         for path in real_photos(config.real):
             graph = graph_for_photo(path, known)
             if graph is not None:

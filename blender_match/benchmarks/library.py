@@ -5,14 +5,14 @@ from __future__ import annotations
 
 import torch
 
-from ..library import library_entry, library_names, load_library_graph
+from ..library import builtin_names, library_entry, load_library_graph
 from .measure import best_of
 
 SIZES = (512, 2048)
 
 
 def run(device: str = "cpu", graphs: list[str] | None = None, sizes=SIZES, repeats: int = 1) -> list[dict]:
-    names = graphs or library_names()
+    names = graphs or builtin_names()
     if not names:
         raise FileNotFoundError("no library graphs are built (python -m blender_match.library.build)")
     rows = []

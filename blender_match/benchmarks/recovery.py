@@ -35,7 +35,7 @@ from pathlib import Path
 import torch
 
 from ..diffmat.render import render_maps
-from ..library import apply_params, library_names, load_library_graph, sample_params
+from ..library import apply_params, builtin_names, load_library_graph, sample_params
 from ..pipeline import fit_named_graph, match_schedule, resolve_device
 from ..safe_files import write_atomic
 from ..vocabulary import QUALITY_NAMES
@@ -131,7 +131,7 @@ def markdown(summary: list[dict], rows: list[dict], config: dict) -> str:
 def run(device: str = "cpu", graphs=None, quick: bool = False, quality: str | None = None, out: Path | None = None,
         size: int | None = None, targets: int = 1, iterations: int | None = None, **_ignored) -> list[dict]:
     torch_device = resolve_device(device)
-    names = list(graphs or (QUICK_GRAPHS if quick else library_names()))
+    names = list(graphs or (QUICK_GRAPHS if quick else builtin_names()))
     presets = tuple(quality.split(",")) if quality else PRESETS  # "draft,balanced": those two
     size = size or SIZE
     rows = []

@@ -14,7 +14,14 @@ import bpy
 import bpy.utils.previews
 
 from ..errors import BlenderMatchError
-from ..library.catalog import GRAPHS_DIR, LibraryError, library_entry, library_names
+from ..library.catalog import (
+    USER_LIBRARY_ENV,
+    LibraryError,
+    library_entry,
+    library_names,
+    thumbnail_file,
+    user_library_dir,
+)
 from ..vocabulary import DEFAULT_DEVICE, DEVICES, QUALITIES
 from ..worker.client import find_worker_python
 
@@ -86,6 +93,28 @@ def resolve_device(device: str, context=None) -> str:
 
 # --- the library graphs --------------------------------------------------------------------------
 
+# the user library Blender was started with ($BLENDER_MATCH_LIBRARY), restored when the
+# preference is emptied
+_STARTUP_LIBRARY = os.environ.get(USER_LIBRARY_ENV)
+
+
+def apply_user_library(context=None) -> Path:
+    """Point the library's catalogue, and so the graph menu and every worker started from here (they
+    inherit the environment), at the preferences' user library folder; an empty preference keeps
+    the folder Blender was started with (``$BLENDER_MATCH_LIBRARY``, else the user-data default).
+    The menu and thumbnails are read again. The folder in use."""
+    prefs = preferences(context)
+    folder = str(getattr(prefs, "user_library", "") or "").strip()
+    if folder:
+        os.environ[USER_LIBRARY_ENV] = str(Path(bpy.path.abspath(folder)).expanduser())
+    elif _STARTUP_LIBRARY is not None:
+        os.environ[USER_LIBRARY_ENV] = _STARTUP_LIBRARY
+    else:
+        os.environ.pop(USER_LIBRARY_ENV, None)
+    release_previews()
+    return user_library_dir()
+
+
 _GRAPHS: dict | None = None
 
 
@@ -102,7 +131,8 @@ def library_graphs() -> dict[str, dict]:
                 continue
             graphs[name] = {"name": entry.get("name", name), "description": entry.get("description", ""),
                             "exposed": list(entry.get("exposed") or []),
-                            "exposed_params": dict(entry.get("exposed_params") or {})}
+                            "exposed_params": dict(entry.get("exposed_params") or {}),
+                            "library": entry.get("library", "built-in")}
         _GRAPHS = graphs
     return _GRAPHS
 
@@ -124,9 +154,13 @@ _PREVIEWS = None
 
 
 def graph_icon(name: str) -> int:
-    """The icon id of a library graph's thumbnail (``graphs/<name>.png``), 0 when there is none."""
+    """The icon id of a library graph's thumbnail (``graphs/<name>.png`` of its library), 0 when there
+    is none."""
     global _PREVIEWS
-    path = GRAPHS_DIR / f"{name}.png"
+    try:
+        path = thumbnail_file(name)
+    except LibraryError:
+        return 0
     if not path.is_file():
         return 0
     if _PREVIEWS is None:

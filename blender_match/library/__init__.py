@@ -7,7 +7,11 @@ docstring, ``build() -> SbsGraph`` and ``SAMPLE_RANGES``), exported by
 keyed by the parameter names of the graph as ``load_sbs_graph`` returns it). At run time only the
 shipped files are read: a library graph is the translation of its ``.sbs`` file.
 
-API: ``library_names()``, ``library_entry(name)``, ``load_library_graph(name)``,
+A user library folder of the same layout (``blender-match library add``, ``library.user``) is
+searched together with the shipped one; see ``catalog``.
+
+API: ``library_names()`` (``builtin_names()`` + ``user_names()``), ``library_entry(name)``,
+``load_library_graph(name)``,
 ``sample_params(name, k)`` (the k-th random variant, in the parameter-file format of
 ``diffmat.params_file``), ``source_names()`` and ``build_source(name)`` (the Python sources).
 The catalogue (``catalog``: names, metadata, variants) and this package import without torch,
@@ -19,7 +23,22 @@ import importlib
 import pkgutil
 
 from . import sources
-from .catalog import GRAPHS_DIR, LIBRARY_DIR, LibraryError, library_entry, library_names, library_path, sample_params
+from .catalog import (
+    GRAPHS_DIR,
+    LIBRARY_DIR,
+    MODELS_DIR,
+    LibraryError,
+    builtin_names,
+    library_entry,
+    library_names,
+    library_path,
+    metadata_file,
+    models_folder,
+    sample_params,
+    thumbnail_file,
+    user_library_dir,
+    user_names,
+)
 
 
 def source_names() -> list[str]:
@@ -46,7 +65,8 @@ def load_library_graph(name: str, mode: str = "exposed_plus"):
     # torch loads here, not at the top: the catalogue (and so this package) must import without it
     from ..translator import load_sbs_graph
 
-    return load_sbs_graph(library_path(name), mode=mode)
+    entry = library_entry(name)
+    return load_sbs_graph(entry["path"], entry.get("graph"), mode=mode)
 
 
 def apply_params(graph, params: dict):
@@ -56,6 +76,6 @@ def apply_params(graph, params: dict):
     apply_checked(graph, params, f"graph {graph.name}")
 
 
-__all__ = ["GRAPHS_DIR", "LIBRARY_DIR", "LibraryError", "apply_params", "build_source", "library_entry",
-           "library_names", "library_path", "load_library_graph", "sample_params", "source_module",
-           "source_names"]
+__all__ = ["GRAPHS_DIR", "LIBRARY_DIR", "MODELS_DIR", "LibraryError", "apply_params", "build_source", "builtin_names",
+           "library_entry", "library_names", "library_path", "load_library_graph", "metadata_file", "models_folder",
+           "sample_params", "source_module", "source_names", "thumbnail_file", "user_library_dir", "user_names"]

@@ -99,7 +99,6 @@ def sample_ranges(translated, mapping: dict[str, str], declared: dict, name: str
         los = [max(lo, v - d) for v in value]
         his = [min(hi, v + d) for v in value]
         out[f"{n}.{p}"] = [los[0], his[0]] if len(value) == 1 else [los, his]
-    back = {t: s for s, t in mapping.items()}
     for key, rng in declared.items():
         node, _, param = key.partition(".")
         tkey = key if node == "exposed" else f"{mapping.get(node, '?')}.{param}"
@@ -123,7 +122,6 @@ def sample_ranges(translated, mapping: dict[str, str], declared: dict, name: str
         los = [max(plo, a) for a in los]
         his = [min(phi, b) for b in his]
         out[tkey] = [los[0], his[0]] if k == 1 else [los, his]
-    del back
     return {k: _rounded(v) for k, v in sorted(out.items())}
 
 
@@ -132,6 +130,27 @@ def _rounded(rng):
         return [round(v, 6) for v in x] if isinstance(x, list) else round(x, 6)
     lo, hi = r(rng[0]), r(rng[1])
     return [lo, hi]
+
+
+def graph_summary(translated) -> dict:
+    """The metadata every library entry has from its translated graph: ``nodes``,
+    ``params_optimizable``, ``exposed``, ``exposed_params`` (kind, default, range), ``bindings`` and
+    ``outputs``."""
+    ex = translated.exposed
+    exposed_params: dict[str, dict[str, object]] = {}
+    values = ex.values()
+    for pname, kind in ex.kinds.items():
+        info: dict[str, object] = {"kind": kind}
+        if kind == "float":
+            v = _real(values[pname])
+            info["default"] = [round(x, 6) for x in v] if len(v) > 1 else round(v[0], 6)
+            info["min"], info["max"] = [round(x, 6) for x in ex.ranges[pname]]
+        else:
+            info["default"] = values[pname]
+        exposed_params[pname] = info
+    return {"nodes": len(translated.nodes), "params_optimizable": translated.num_params(), "exposed": list(ex.kinds),
+            "exposed_params": exposed_params, "bindings": translated.report["bindings"],
+            "outputs": sorted(translated.outputs)}
 
 
 def build_one(name: str) -> tuple[str, str]:
@@ -155,31 +174,9 @@ def build_one(name: str) -> tuple[str, str]:
         raise DiffMatError(f"sources/{name}.py: {report['nodes_passthrough']} node(s) translate as pass-through "
                            f"({report['unsupported']})")
     mapping = match_nodes(graph, translated)
-    ex = translated.exposed
-    exposed_params: dict[str, dict[str, object]] = {}
-    values = ex.values()
-    for pname, kind in ex.kinds.items():
-        info: dict[str, object] = {"kind": kind}
-        if kind == "float":
-            v = _real(values[pname])
-            info["default"] = [round(x, 6) for x in v] if len(v) > 1 else round(v[0], 6)
-            info["min"], info["max"] = [round(x, 6) for x in ex.ranges[pname]]
-        else:
-            info["default"] = values[pname]
-        exposed_params[pname] = info
-    meta = {
-        "name": name,
-        "file": f"{name}.sbs",
-        "description": description,
-        "nodes": len(translated.nodes),
-        "params_optimizable": translated.num_params(),
-        "exposed": list(ex.kinds),
-        "exposed_params": exposed_params,
-        "bindings": report["bindings"],
-        "outputs": sorted(translated.outputs),
-        "sample_ranges": sample_ranges(translated, mapping, declared, name),
-        "node_names": dict(sorted(mapping.items())),
-    }
+    meta = {"name": name, "file": f"{name}.sbs", "description": description, **graph_summary(translated),
+            "sample_ranges": sample_ranges(translated, mapping, declared, name),
+            "node_names": dict(sorted(mapping.items()))}
     return text, json.dumps(meta, indent=1) + "\n"
 
 

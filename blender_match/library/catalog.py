@@ -1,5 +1,13 @@
-"""The library's catalogue: which graphs are shipped (``graphs/<name>.json`` with its ``.sbs``),
-their metadata, and the random variants their declared parameter ranges allow.
+"""The library's catalogue: which graphs there are, their metadata, and the random variants their
+declared parameter ranges allow.
+
+Two libraries are searched together. The built-in one is shipped in the package
+(``library/graphs/<name>.json`` beside its ``.sbs``, models in ``library/models/``). The user's
+own (``blender-match library add``) lives in a folder of the same layout: ``graphs/<name>.json``,
+``graphs/<name>.png`` and the entry's ``.sbs`` under ``graphs/<name>/`` (with the local files it
+depends on), models in ``models/``. That folder is ``$BLENDER_MATCH_LIBRARY`` when it is set (the
+add-on sets it from its preferences), else the platform's user-data folder
+(``user_library_dir``). A built-in name always wins: a user entry of the same name is not listed.
 
 Standard library only: the Blender add-on (whose Python has no torch) lists and describes the
 library graphs with these functions, as the command line and the pipeline do.
@@ -7,26 +15,66 @@ library graphs with these functions, as the command line and the pipeline do.
 from __future__ import annotations
 
 import json
+import os
 import random
 import re
+import sys
 from pathlib import Path
 
 from ..errors import BlenderMatchError
 
 LIBRARY_DIR = Path(__file__).resolve().parent
 GRAPHS_DIR = LIBRARY_DIR / "graphs"
+MODELS_DIR = LIBRARY_DIR / "models"
+USER_LIBRARY_ENV = "BLENDER_MATCH_LIBRARY"
 NAME = re.compile(r"^[a-z][a-z0-9_]*$")
+BUILT_IN, USER = "built-in", "user"
 
 
 class LibraryError(BlenderMatchError):
     """A name that is not a library graph or source, or library metadata that cannot be read."""
 
 
-def library_names() -> list[str]:
-    """Names of the shipped library graphs (``graphs/*.json`` with their ``.sbs``)."""
-    if not GRAPHS_DIR.is_dir():
+def user_library_dir() -> Path:
+    """The user library's folder: ``$BLENDER_MATCH_LIBRARY``, else ``blender_match/library`` in
+    the platform's user-data folder (``%APPDATA%`` on Windows, ``~/Library/Application Support`` on
+    macOS, ``$XDG_DATA_HOME`` or ``~/.local/share`` elsewhere). It need not exist yet."""
+    chosen = os.environ.get(USER_LIBRARY_ENV, "").strip()
+    if chosen:
+        return Path(chosen).expanduser()
+    if sys.platform == "win32":
+        base = Path(os.environ.get("APPDATA") or Path.home() / "AppData" / "Roaming")
+    elif sys.platform == "darwin":
+        base = Path.home() / "Library" / "Application Support"
+    else:
+        base = Path(os.environ.get("XDG_DATA_HOME") or Path.home() / ".local" / "share")
+    return base / "blender_match" / "library"
+
+
+def _names_in(graphs_dir: Path) -> list[str]:
+    """Names of the entries of a ``graphs/`` folder: ``<name>.json`` files with their ``<name>.sbs``
+    (built-in) or their ``<name>/`` folder (user entries)."""
+    if not graphs_dir.is_dir():
         return []
-    return sorted(p.stem for p in GRAPHS_DIR.glob("*.json") if (GRAPHS_DIR / f"{p.stem}.sbs").is_file())
+    return [meta.stem for meta in sorted(graphs_dir.glob("*.json"))
+            if NAME.match(meta.stem) and ((graphs_dir / f"{meta.stem}.sbs").is_file()
+                                          or (graphs_dir / meta.stem).is_dir())]
+
+
+def builtin_names() -> list[str]:
+    """Names of the shipped library graphs (``graphs/*.json`` with their ``.sbs``)."""
+    return _names_in(GRAPHS_DIR)
+
+
+def user_names() -> list[str]:
+    """Names of the user library's graphs, built-in names excepted."""
+    taken = set(builtin_names())
+    return [n for n in _names_in(user_library_dir() / "graphs") if n not in taken]
+
+
+def library_names() -> list[str]:
+    """Every graph automatic matching searches: the built-in ones, then the user's."""
+    return builtin_names() + user_names()
 
 
 def check_name(name: str) -> str:
@@ -37,23 +85,51 @@ def check_name(name: str) -> str:
     return name
 
 
+def library_root(name: str) -> Path:
+    """The folder of the library holding graph ``name`` (with its ``graphs/`` and ``models/``)."""
+    return LIBRARY_DIR if check_name(name) in builtin_names() else user_library_dir()
+
+
+def models_folder(name: str) -> Path:
+    """Where graph ``name``'s selection models (bank, predictor) live."""
+    return MODELS_DIR if library_root(name) == LIBRARY_DIR else user_library_dir() / "models"
+
+
+def metadata_file(name: str) -> Path:
+    """Graph ``name``'s metadata file (``graphs/<name>.json`` of its library)."""
+    return library_root(name) / "graphs" / f"{name}.json"
+
+
 def library_entry(name: str) -> dict:
     """The metadata of a library graph: name, file, description, nodes, params_optimizable,
     exposed, exposed_params, sample_ranges ({"node.param": [lo, hi]}, names as in the translated
-    graph)... plus "path", its .sbs file."""
-    path = GRAPHS_DIR / f"{check_name(name)}.json"
+    graph)... plus "path", its .sbs file, and "library", BUILT_IN or USER. A user entry also has
+    "graph" (the graph's identifier in its package) and "origin" (the file it was added from)."""
+    root = library_root(name)
+    path = metadata_file(name)
     try:
         entry = json.loads(path.read_text(encoding="utf-8"))
     except (OSError, UnicodeDecodeError, json.JSONDecodeError) as exc:
         raise LibraryError(f"{path}: unreadable ({exc})") from None
     if not isinstance(entry, dict):
         raise LibraryError(f"{path}: not a JSON object")
-    entry["path"] = str(GRAPHS_DIR / entry.get("file", f"{name}.sbs"))
+    graphs = (root / "graphs").resolve()
+    sbs = (graphs / str(entry.get("file", f"{name}.sbs"))).resolve()
+    if graphs not in sbs.parents:
+        raise LibraryError(f"{path}: its file {entry.get('file')!r} lies outside {graphs}")
+    entry["path"] = str(sbs)
+    entry["library"] = BUILT_IN if root == LIBRARY_DIR else USER
     return entry
 
 
 def library_path(name: str) -> Path:
-    return GRAPHS_DIR / f"{check_name(name)}.sbs"
+    """The .sbs file of library graph ``name``."""
+    return Path(library_entry(name)["path"])
+
+
+def thumbnail_file(name: str) -> Path:
+    """Where graph ``name``'s thumbnail is (``graphs/<name>.png`` of its library; may be absent)."""
+    return library_root(name) / "graphs" / f"{name}.png"
 
 
 def _draw(rng: random.Random, lo, hi):

@@ -20,7 +20,7 @@ import torch
 from ..diffmat.render import render_maps
 from ..errors import OptionError
 from ..image_files import write_png
-from . import GRAPHS_DIR, library_names, load_library_graph
+from . import GRAPHS_DIR, builtin_names, load_library_graph
 
 THUMBNAIL_SIZE = 128
 
@@ -31,7 +31,11 @@ def thumbnail_path(name: str, out_dir: Path = GRAPHS_DIR) -> Path:
 
 def render_thumbnail(name: str, size: int = THUMBNAIL_SIZE, seed: int = 0):
     """The (1, 3, size, size) sRGB flash render of library graph ``name`` at its defaults."""
-    graph = load_library_graph(name)
+    return flash_thumbnail(load_library_graph(name), size, seed)
+
+
+def flash_thumbnail(graph, size: int = THUMBNAIL_SIZE, seed: int = 0):
+    """The (1, 3, size, size) sRGB flash render of a material graph at its current parameters."""
     with torch.no_grad():
         maps = graph(size=size, seed=seed)
         return render_maps({usage: m.float().cpu() for usage, m in maps.items()}).clamp(0, 1)
@@ -41,10 +45,10 @@ def write_thumbnails(names=None, size: int = THUMBNAIL_SIZE, out_dir: Path = GRA
                      overwrite: bool = False) -> list[Path]:
     """Write ``<out_dir>/<name>.png`` for each library graph (all by default); their paths.
     Existing thumbnails are kept unless ``overwrite``."""
-    names = library_names() if names is None else list(names)
-    unknown = sorted(set(names) - set(library_names()))
+    names = builtin_names() if names is None else list(names)
+    unknown = sorted(set(names) - set(builtin_names()))
     if unknown:
-        raise OptionError(f"not library graphs: {', '.join(unknown)} (library: {', '.join(library_names())})")
+        raise OptionError(f"not library graphs: {', '.join(unknown)} (library: {', '.join(builtin_names())})")
     written = []
     for name in names:
         path = thumbnail_path(name, out_dir)

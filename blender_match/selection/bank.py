@@ -7,7 +7,8 @@ photo's nearest sample (``nearest``) gives, per graph, how close the graph can c
 without fitting and the parameters that came closest: a start for the fit. Adding a graph only
 adds its bank; nothing else is recomputed.
 
-Files: ``library/models/<name>.bank.pt``, a ``torch.save`` of plain tensors, strings and numbers
+Files: ``<name>.bank.pt`` in the models folder of the graph's library (``library/models/`` for the
+shipped graphs), a ``torch.save`` of plain tensors, strings and numbers
 (``torch.load(..., weights_only=True)`` reads it): ``descriptors`` (N, D) float16, ``thetas``
 (N, P) float32, ``indices`` (the sample indices k), and what makes it current: the SHA-256 of
 the graph's ``.sbs`` and ``.json`` (``graph_hash``), the descriptor kind; and the render size and seed.
@@ -25,26 +26,33 @@ from pathlib import Path
 import torch
 
 from ..diffmat.render import render_maps
-from ..library import apply_params, library_entry, library_path, load_library_graph, sample_params
+from ..library import (
+    apply_params,
+    library_entry,
+    library_path,
+    load_library_graph,
+    metadata_file,
+    models_folder,
+    sample_params,
+)
 from ..safe_files import write_atomic
 from .descriptor import DESCRIPTOR_KIND, DESCRIPTOR_SIZE, compact_descriptor, descriptor_distance, shared_vgg
 
-MODELS_DIR = Path(__file__).resolve().parents[1] / "library" / "models"
 BANK_SIZE = 64
 BANK_SEED = 0
 BANK_SUFFIX = ".bank.pt"
 
 
-def models_dir(path=None) -> Path:
-    return Path(path) if path is not None else MODELS_DIR
+def models_dir(path, name: str) -> Path:
+    """The folder of graph ``name``'s models: ``path`` when given, else its library's own."""
+    return Path(path) if path is not None else models_folder(name)
 
 
 def graph_hash(name: str) -> str:
     """SHA-256 of a library graph's shipped .sbs file and its metadata (the translated parameter
     space, sampling ranges): a model built from either one changed is stale, so a translator
     change that moves the parameter vector retrains the graphs it touches."""
-    sbs = library_path(name)
-    return hashlib.sha256(sbs.read_bytes() + sbs.with_suffix(".json").read_bytes()).hexdigest()
+    return hashlib.sha256(library_path(name).read_bytes() + metadata_file(name).read_bytes()).hexdigest()
 
 
 def save_torch(obj, path: Path):
@@ -127,7 +135,7 @@ def build_bank(name: str, n: int = BANK_SIZE, size: int = DESCRIPTOR_SIZE, seed:
 
 def write_bank(name: str, thetas: torch.Tensor, descriptors: torch.Tensor, indices: list[int], size: int,
                seed: int, directory=None) -> Path:
-    path = models_dir(directory) / f"{name}{BANK_SUFFIX}"
+    path = models_dir(directory, name) / f"{name}{BANK_SUFFIX}"
     save_torch({"graph": name, "graph_sha256": graph_hash(name), "descriptor": DESCRIPTOR_KIND,
                 "size": int(size), "seed": int(seed), "indices": torch.tensor(indices, dtype=torch.int64),
                 "thetas": thetas.float().cpu(), "descriptors": descriptors.half().cpu()}, path)
@@ -136,7 +144,7 @@ def write_bank(name: str, thetas: torch.Tensor, descriptors: torch.Tensor, indic
 
 def load_bank(name: str, directory=None) -> dict | None:
     """A graph's bank (None when it has none)."""
-    return load_torch(models_dir(directory) / f"{name}{BANK_SUFFIX}")
+    return load_torch(models_dir(directory, name) / f"{name}{BANK_SUFFIX}")
 
 
 def current_bank(name: str, directory=None) -> dict | None:

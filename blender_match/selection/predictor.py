@@ -101,7 +101,7 @@ class ParamPredictor(nn.Module):
 
 
 def predictor_paths(name: str, directory=None):
-    base = models_dir(directory)
+    base = models_dir(directory, name)
     return base / f"{name}{PREDICTOR_SUFFIX}", base / f"{name}{META_SUFFIX}", base / f"{name}{CHECKPOINT_SUFFIX}"
 
 

@@ -19,8 +19,8 @@ from ..diffmat.descriptor import TextureDescriptor, style_loss
 from ..diffmat.optim import resize_square
 from ..diffmat.render import render_maps
 from ..errors import BlenderMatchError, Cancelled, OptionError
-from ..library import library_entry, library_names, load_library_graph
-from .bank import bank_is_current, current_bank, models_dir, nearest
+from ..library import MODELS_DIR, library_entry, library_names, load_library_graph, user_library_dir
+from .bank import bank_is_current, current_bank, nearest
 from .descriptor import DESCRIPTOR_SIZE, compact_descriptor, shared_vgg
 from .predictor import load_predictor, predictor_is_current
 
@@ -126,7 +126,8 @@ def rank_graphs(photo: torch.Tensor, method: str = "both", *, seed: int = 0, dev
         wanted = set(graphs)
         names = [n for n in names if n in wanted]
     if not names:
-        raise NoSelectionModels(NO_MODELS.format(where=models_dir(directory)))
+        where = directory if directory is not None else f"{MODELS_DIR} nor {user_library_dir() / 'models'}"
+        raise NoSelectionModels(NO_MODELS.format(where=where))
     vgg = shared_vgg(device)
     gram = TextureDescriptor(scales=(RANK_SIZE,), vgg=vgg)
     with torch.no_grad():

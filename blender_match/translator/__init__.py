@@ -40,7 +40,7 @@ from .report import make_report
 from .runtime import MODES, SbsGraph
 from .xml_safety import MAX_BYTES, read_document
 
-__all__ = ["TranslatorError", "Translation", "translate", "load_sbs_graph", "SbsGraph", "MODES"]
+__all__ = ["TranslatorError", "Translation", "translate", "load_sbs_graph", "local_dependencies", "SbsGraph", "MODES"]
 
 
 @dataclass
@@ -96,6 +96,28 @@ def translate(path, graph_name: str | None = None, mode: str = "exposed_plus", *
                          graphs=[g.identifier for g in pkg.graphs])
     sbs_graph.report = report
     return Translation(sbs_graph, program, report)
+
+
+def local_dependencies(path) -> list[str]:
+    """The local files (relative paths, as the document writes them, ``file://`` removed) that the
+    .sbs file at ``path`` and, recursively, the ones among them that exist name as dependencies;
+    ``sbs://`` references to Substance's own library, which the engine implements, are not listed."""
+    seen: dict[str, str] = {}
+    stack = [(os.path.abspath(str(path)), "")]
+    while stack:
+        file, prefix = stack.pop()
+        pkg = load_package(file, read_document(file, MAX_BYTES))
+        for name in pkg.dependencies.values():
+            ref = name[len("file://"):] if name.startswith("file://") else name
+            if "://" in ref or ref == "?himself":
+                continue
+            relative = os.path.normpath(os.path.join(prefix, ref))
+            target = os.path.abspath(os.path.join(os.path.dirname(file), ref))
+            if relative not in seen:
+                seen[relative] = target
+                if os.path.isfile(target) and len(seen) <= 64:
+                    stack.append((target, os.path.dirname(relative)))
+    return sorted(seen)
 
 
 def load_sbs_graph(path, graph_name: str | None = None, mode: str = "exposed_plus") -> SbsGraph:

@@ -23,22 +23,25 @@ from __future__ import annotations
 import os
 import struct
 import textwrap
+from pathlib import Path
 
 import pytest
 from blender_session import run_blender_script
 from conftest import ROOT
 
 from blender_match.errors import OptionError
+from blender_match.library.catalog import USER_LIBRARY_ENV
 from blender_match.library.thumbnails import write_thumbnails
+from blender_match.library.user import add_entry
 
 GRAPHS = ROOT / "blender_match" / "library" / "graphs"
 
 SESSION = textwrap.dedent(r"""
-    import importlib, json, sys, time
+    import importlib, json, os, sys, time
     from types import SimpleNamespace
     import bpy, addon_utils
 
-    PHOTO = sys.argv[1]
+    PHOTO, USER_LIBRARY = sys.argv[1:3]
     out = {"seconds": {}}
     T0 = time.monotonic()
 
@@ -207,6 +210,15 @@ SESSION = textwrap.dedent(r"""
     mark("probe")
     out["preferences_after_probe"] = summary(
         draw(lambda layout, context: preferences.draw_preferences(prefs, layout, context)))
+    # a user library named in the preferences reaches the graph menu and the workers' environment
+    prefs.user_library = USER_LIBRARY
+    out["user_library"] = {"env": os.environ.get("BLENDER_MATCH_LIBRARY"),
+                           "thumbnail": str(addon.thumbnail_file("my_plaster")),
+                           "graphs": [n for n, g in addon.library_graphs().items() if g["library"] == "user"]}
+    out["user_library_preferences"] = summary(
+        draw(lambda layout, context: preferences.draw_preferences(prefs, layout, context)))
+    prefs.user_library = ""
+    out["user_library_cleared"] = [n for n, g in addon.library_graphs().items() if g["library"] == "user"]
     try:
         out["setup"] = sorted(bpy.ops.blender_match.setup_backend(base_python="/no/such/python", wait=True))
     except RuntimeError as exc:
@@ -233,9 +245,17 @@ SESSION = textwrap.dedent(r"""
 @pytest.fixture(scope="module")
 def session(tmp_path_factory, plaster_photo) -> dict:
     work = tmp_path_factory.mktemp("ui")
+    user_library = work / "user library"
+    (work / "My Plaster.sbs").write_bytes((GRAPHS / "plaster.sbs").read_bytes())
+    started_with = os.environ[USER_LIBRARY_ENV]
+    os.environ[USER_LIBRARY_ENV] = str(user_library)
+    try:
+        add_entry(work / "My Plaster.sbs")
+    finally:
+        os.environ[USER_LIBRARY_ENV] = started_with
     env = {**os.environ, "BLENDER_USER_RESOURCES": str(work / "blender-user"),
            "PYTHONPATH": os.pathsep.join([str(ROOT), os.environ.get("PYTHONPATH", "")]).rstrip(os.pathsep)}
-    return run_blender_script(SESSION, [str(plaster_photo)], work, env, timeout=600)
+    return run_blender_script(SESSION, [str(plaster_photo), str(user_library)], work, env, timeout=600)
 
 
 def _ops(drawn) -> list[str]:
@@ -336,6 +356,19 @@ def test_preferences_probe_and_setup(session):
     assert "torch " in session["probe_message"] and "devices: cpu" in session["probe_message"]
     assert any("torch " in label for label in session["preferences_after_probe"]["labels"])
     assert session["setup"].startswith("Error: cannot set up the backend: the Python /no/such/python does not exist")
+
+
+def test_preferences_user_library(session):
+    """The folder set in the preferences is the one the catalogue (and every worker, through the
+    environment) reads; emptied, the folder Blender started with comes back."""
+    chosen = session["user_library"]
+    assert chosen["env"].endswith("user library")
+    assert chosen["graphs"] == ["my_plaster"]
+    assert chosen["thumbnail"] == str(Path(chosen["env"]) / "graphs" / "my_plaster.png")
+    assert "user_library" in {p[1] for p in session["user_library_preferences"]["props"]}
+    labels = session["user_library_preferences"]["labels"]
+    assert any(label.startswith("1 graph(s) of your own in ") for label in labels)
+    assert session["user_library_cleared"] == []
 
 
 def test_panels_and_disable(session):

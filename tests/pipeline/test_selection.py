@@ -134,8 +134,7 @@ def test_the_library_is_trained_and_indexed():
     missing = [n for n in names if not (predictor_is_current(n) and bank_is_current(n))]
     assert not missing, f"stale or missing selection models: {missing} (blender-match train --all)"
     assert available_models("both") == names
-    from blender_match.library import library_entry
-    from blender_match.selection.bank import MODELS_DIR
+    from blender_match.library import MODELS_DIR, library_entry
 
     for name in names:
         meta = json.loads((MODELS_DIR / f"{name}.predictor.json").read_text())

@@ -1,0 +1,90 @@
+"""``blender-match library add / list / remove`` end to end on a folder of real .sbs files: a user
+graph gets its thumbnail and bank, is listed beside the shipped graphs, is chosen by automatic
+ranking on a render of itself, a second run resumes instead of redoing, and removal takes it out."""
+from __future__ import annotations
+
+import contextlib
+import io
+import json
+import shutil
+
+import pytest
+import torch
+
+from blender_match.cli import main
+from blender_match.diffmat.render import render_maps
+from blender_match.library import load_library_graph, user_names
+from blender_match.library.catalog import USER_LIBRARY_ENV
+from blender_match.selection.bank import bank_is_current
+from blender_match.selection.rank import rank_graphs
+
+USER_GRAPH = "synthoid_outputsizeexample"
+
+
+@pytest.fixture(scope="module")
+def added(tmp_path_factory, shared_dir):
+    """A user library filled by ``library add FOLDER`` from a folder of one real .sbs and one
+    broken file; the command's exit status and output, the library folder."""
+    work = tmp_path_factory.mktemp("library-add")
+    folder = work / "downloads"
+    folder.mkdir()
+    name = "synthoid_OutputSizeExample.sbs"
+    shutil.copyfile(shared_dir / "data" / "sbs" / name, folder / name)
+    (folder / "broken.sbs").write_text("<package>")
+    library = work / "library"
+    patch = pytest.MonkeyPatch()
+    patch.setenv(USER_LIBRARY_ENV, str(library))
+    out = io.StringIO()  # capsys is per test; a module fixture reads the output itself
+    with contextlib.redirect_stdout(out):
+        status = main(["library", "add", str(folder)])
+    yield {"status": status, "out": out.getvalue(), "library": library, "folder": folder}
+    patch.undo()
+
+
+@pytest.fixture()
+def in_library(added, monkeypatch):
+    monkeypatch.setenv(USER_LIBRARY_ENV, str(added["library"]))
+    return added
+
+
+def test_add_reports_each_file_and_refuses_the_broken_one(added):
+    lines = added["out"].splitlines()
+    assert added["status"] == 2  # one file refused
+    assert lines[0] == f"user library: {added['library']}"
+    assert any(line.startswith(f"{added['folder'] / 'broken.sbs'}: refused: ") and "malformed XML" in line
+               for line in lines)
+    assert any(line.startswith(f"{USER_GRAPH}: added (26 nodes") for line in lines)
+    assert lines[-1] == "library add: 1 of 2 file(s) in the user library"
+
+
+def test_the_added_graph_has_its_thumbnail_bank_and_listing(in_library, capsys):
+    library = in_library["library"]
+    assert user_names() == [USER_GRAPH]
+    assert (library / "graphs" / f"{USER_GRAPH}.png").is_file()
+    assert bank_is_current(USER_GRAPH)
+    assert main(["library", "list", "--json"]) == 0
+    listed = {e["name"]: e for e in json.loads(capsys.readouterr().out)}
+    assert listed[USER_GRAPH]["library"] == "user" and listed["plaster"]["library"] == "built-in"
+
+
+def test_automatic_ranking_picks_the_user_graph_on_a_render_of_itself(in_library):
+    graph = load_library_graph(USER_GRAPH)
+    with torch.no_grad():
+        photo = render_maps(graph(size=256, seed=5)).clamp(0, 1)
+    ranking = rank_graphs(photo, graphs=[USER_GRAPH, "plaster", "bricks", "painted_metal", "ceramic_tiles"])
+    assert ranking[0]["graph"] == USER_GRAPH, [(e["graph"], round(e["distance"], 4)) for e in ranking]
+    assert ranking[0]["start"] == "bank"  # no predictor was trained: the bank proposes the start
+
+
+def test_a_second_run_resumes_and_remove_takes_the_graph_out(in_library, capsys):
+    sbs = in_library["folder"] / "synthoid_OutputSizeExample.sbs"
+    bank = in_library["library"] / "models" / f"{USER_GRAPH}.bank.pt"
+    bank.unlink()  # as if the first run was interrupted after the translation
+    assert main(["library", "add", str(sbs)]) == 0
+    assert f"{USER_GRAPH}: bank rebuilt" in capsys.readouterr().out and bank.is_file()
+    assert main(["library", "add", str(sbs)]) == 0
+    assert f"{USER_GRAPH}: up to date" in capsys.readouterr().out
+    assert main(["library", "remove", USER_GRAPH]) == 0
+    assert user_names() == [] and not bank.exists()
+    assert main(["library", "remove", USER_GRAPH]) == 2
+    assert f"{USER_GRAPH}: not in the user library" in capsys.readouterr().err
