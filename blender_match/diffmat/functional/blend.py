@@ -21,7 +21,7 @@ the mode gives a target T(F, B), and the result is B + w (T - B), clamped to [0,
                  B + (2F - 1)(D(B) - B) with D(B) = ((16B - 12)B + 4)B for B <= 0.25, sqrt(B) above
 ==  ===========  ==========================================================================
 
-w = ``opacitymult`` x ``opacity`` mask (when connected) x the coverage of ``maskrectangle``
+w = ``opacitymult`` (clamped to [0, 1]) x ``opacity`` mask (when connected) x the coverage of ``maskrectangle``
 (left, right, top, bottom in texture units; a pixel straddling an edge is covered by its area
 fraction, so the rectangle's edges are differentiable).
 
@@ -125,6 +125,7 @@ def blend(source: torch.Tensor, destination: torch.Tensor, opacity: torch.Tensor
     weight = param4d(opacitymult, bg)
     if weight.shape[1] != 1:
         raise DiffMatError(f"blend.opacitymult: expected 1 component, got {weight.shape[1]}")
+    weight = weight.clamp(0.0, 1.0)   # an opacity above 1 does not extrapolate (docs/nodes.md)
     rect = param2d(maskrectangle, bg)
     if rect.shape[1] != 4:
         raise DiffMatError(f"blend.maskrectangle: expected 4 components (left right top bottom), got {rect.shape[1]}")

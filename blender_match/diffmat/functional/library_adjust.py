@@ -60,12 +60,17 @@ def histogram_scan(input_1: torch.Tensor, *, position=0.0, contrast=0.0, invert_
 
 def histogram_range(input: torch.Tensor, *, range=0.5, position=0.5):
     """Histogram Range: squeezes the value range to ``range`` wide around ``position``
-    (range 1, position 0.5 is the identity; range 0 is a flat ``position``)."""
+    (range 1, position 0.5 is the identity; range 0 is a flat ``position``).
+
+    The output range stays centred on ``position``: it is [max(p - r/2, 2p - 1), min(p + r/2, 2p)],
+    so near 0 or 1 it narrows symmetrically instead of being clipped on one side (the MATch
+    reference implementation's formula; docs/nodes.md).
+    """
     x = _gray(input)
     r = param4d(range, x)
     p = param4d(position, x)
-    lo = (p - r / 2).clamp(0.0, 1.0)
-    hi = (p + r / 2).clamp(0.0, 1.0)
+    lo = torch.maximum(p - r / 2, 2 * p - 1).clamp(0.0, 1.0)
+    hi = torch.minimum(p + r / 2, 2 * p).clamp(0.0, 1.0)
     return lerp(lo, hi, x)
 
 

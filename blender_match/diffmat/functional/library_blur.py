@@ -32,7 +32,9 @@ __all__ = ["blur_hq", "slope_blur", "non_uniform_blur", "highpass", "vector_warp
 
 PX = 1.0 / 256.0          # one Substance pixel (of a 256-px image) in texture units
 BLUR_SIGMA = 0.5          # Gaussian sigma per unit of Blur HQ intensity, in 256-px pixels
-SLOPE_MODES = {0: "blur", 1: "blur", 5: "max", 6: "min"}
+# Substance stores the mode as a blending-mode code: 5 max, 6 min, 7 (switch) blur; 0 and 1 are
+# this engine's older spellings of blur, kept for graphs written with them
+SLOPE_MODES = {0: "blur", 1: "blur", 5: "max", 6: "min", 7: "blur"}
 MAX_SLOPE_SAMPLES = 4         # cost: one bilinear pass per sample
 
 
@@ -62,7 +64,7 @@ def slope_blur(source: torch.Tensor, effect: torch.Tensor, *, samples: int = 8, 
     Each pixel combines itself and ``samples`` (at most 4, for speed) samples taken down-slope
     (towards lower effect values) at distances up to ``intensity`` 256-px pixels (negative:
     up-slope), scaled by the local steepness (g / sqrt(1 + |g|^2), g the slope in value per
-    image width). ``mode``: 0 or 1 blur (average),
+    image width). ``mode``: 7 (Substance's code), 0 or 1 blur (average),
     5 max, 6 min (Substance's blend-mode codes).
     """
     if mode not in SLOPE_MODES:

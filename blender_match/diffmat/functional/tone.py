@@ -7,8 +7,6 @@ equal RGB.
 """
 from __future__ import annotations
 
-import math
-
 import torch
 
 from ..errors import DiffMatError
@@ -16,9 +14,10 @@ from .common import COLOR, GRAY, check_choice, check_image, param2d, param4d, st
 
 __all__ = ["levels", "curve", "hsl", "grayscale_conversion", "channel_shuffle"]
 
-# The gamma a Levels mid-point may produce: mid in [0.5^9, 0.5^(1/9)] gives gamma in [1/9, 9].
+# Levels' mid point as a gamma (the MATch reference implementation's reading of Substance, see
+# docs/nodes.md): gamma = 1 + 8 |2 mid - 1|, at most 9, its inverse below mid 0.5.
 _GAMMA_MAX = 9.0
-_MID_LO, _MID_HI = 0.5 ** _GAMMA_MAX, 0.5 ** (1.0 / _GAMMA_MAX)
+_GAMMA_SLOPE = 8.0
 
 
 def _per_channel(value, x: torch.Tensor, where: str) -> torch.Tensor:
@@ -34,9 +33,10 @@ def _per_channel(value, x: torch.Tensor, where: str) -> torch.Tensor:
 def levels(input1: torch.Tensor, *, levelinlow=0.0, levelinmid=0.5, levelinhigh=1.0, leveloutlow=0.0,
            levelouthigh=1.0, clampinterm: bool = True) -> torch.Tensor:
     """Levels, per channel: t = (x - in_low) / (in_high - in_low) (in_low > in_high inverts);
-    with ``clampinterm`` t is clamped to [0, 1]; then t^gamma where the mid point maps to 0.5
-    (gamma = log 0.5 / log mid, mid limited so that gamma stays in [1/9, 9]); finally
-    out_low + t^gamma (out_high - out_low), clamped to [0, 1].
+    with ``clampinterm`` t is clamped to [0, 1]; then t^gamma with gamma = 1 + 8 |2 mid - 1|
+    (at most 9) for mid >= 0.5 and its inverse below (mid 0.5 leaves t, mid 0.25 gives t^(1/5),
+    mid 0.75 t^5: gamma is linear in the mid point, as in the MATch reference implementation;
+    docs/nodes.md); finally out_low + t^gamma (out_high - out_low), clamped to [0, 1].
 
     Parameters are numbers or RGBA Float4 (a gray image uses the first component); batched (B, 4)
     parameters give B outputs.
@@ -55,10 +55,16 @@ def levels(input1: torch.Tensor, *, levelinlow=0.0, levelinmid=0.5, levelinhigh=
     t = torch.addcmul(-lo * inv, x, inv)              # (x - lo) / span in one pass
     if clampinterm:
         t = t.clamp(0.0, 1.0)
-    gamma = math.log(0.5) / torch.log(mid.clamp(_MID_LO, _MID_HI))
+    gamma = _mid_gamma(mid)
     if _needs_gamma(mid, gamma):
         t = _gamma_positive(t, gamma)
     return torch.addcmul(olo, t, ohi - olo).clamp(0.0, 1.0)
+
+
+def _mid_gamma(mid: torch.Tensor) -> torch.Tensor:
+    """The Levels exponent of a mid point: 1 + 8 |2 mid - 1| (at most 9), inverted below 0.5."""
+    g = (torch.abs(mid * 2.0 - 1.0) * _GAMMA_SLOPE + 1.0).clamp_max(_GAMMA_MAX)
+    return torch.where(mid < 0.5, 1.0 / g, g)
 
 
 def _gamma_positive(t: torch.Tensor, gamma: torch.Tensor) -> torch.Tensor:

@@ -11,7 +11,7 @@ register(NodeSpec(
         Param("blendingmode", 0, kind="enum", choices=tuple(BLEND_MODES),
               doc="0 copy, 1 add, 2 subtract, 3 multiply, 4 add-sub, 5 max, 6 min, 7 switch, 8 divide, "
                   "9 overlay, 10 screen, 11 soft light"),
-        Param("opacitymult", 1.0, doc="opacity; multiplies the opacity mask"),
+        Param("opacitymult", 1.0, doc="opacity, clamped to [0, 1]; multiplies the opacity mask"),
         Param("alphablending", 0, kind="enum", choices=(0, 1, 2, 3),
               doc="0 use source alpha, 1 ignore alpha, 2 straight, 3 premultiplied"),
         Param("maskrectangle", (0.0, 1.0, 0.0, 1.0), size=4, optimizable=False,

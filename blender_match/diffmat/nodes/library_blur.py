@@ -24,7 +24,8 @@ register(NodeSpec(
     doc="Highpass: detail above the radius, around mid-gray."))
 
 _SLOPE = (Param("samples", 8, 1, 32, kind="int", doc="at most 4 are taken"),
-          Param("mode", 1, kind="enum", choices=(0, 1, 5, 6), doc="0/1 blur, 5 max, 6 min"),
+          Param("mode", 1, kind="enum", choices=(0, 1, 5, 6, 7),
+                doc="7 blur (Substance's code; 0 and 1 also blur), 5 max, 6 min"),
           Param("intensity", 10.0, -16.0, 16.0, doc="256-px pixels along the slope"))
 _gray_and_color("slope_blur_grayscale", "slope_blur", F.slope_blur, "source",
                 "Slope Blur: smear along the slope of a height map", inputs=(Input("effect", "gray"),),

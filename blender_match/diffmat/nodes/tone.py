@@ -9,7 +9,8 @@ register(NodeSpec(
     inputs=(Input("input1"),),
     params=(
         Param("levelinlow", (0.0, 0.0, 0.0, 0.0), size=4, doc="input black point per RGBA"),
-        Param("levelinmid", (0.5, 0.5, 0.5, 0.5), size=4, doc="input mid point per RGBA (maps to 0.5: a gamma)"),
+        Param("levelinmid", (0.5, 0.5, 0.5, 0.5), size=4,
+              doc="mid point per RGBA: exponent 1 + 8 |2 mid - 1| (at most 9), inverted below 0.5"),
         Param("levelinhigh", (1.0, 1.0, 1.0, 1.0), size=4, doc="input white point per RGBA"),
         Param("leveloutlow", (0.0, 0.0, 0.0, 0.0), size=4, doc="output level for the input black point"),
         Param("levelouthigh", (1.0, 1.0, 1.0, 1.0), size=4, doc="output level for the input white point"),
