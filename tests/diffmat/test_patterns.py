@@ -144,15 +144,20 @@ def test_polygon_sides_change_the_area():
 
 # --- gradients, normal colour, stripes -----------------------------------------------------------------
 def test_gradient_linear_1_is_a_ramp():
-    out = _render("gradient_linear_1")[0, 0]
+    """Substance's default rises upwards (white at the top, black at the bottom, the MATch reference
+    implementation's facts); each quarter turn turns it clockwise: 1/4 rises to the right."""
+    out = _render("gradient_linear_1", rotation=0.25)[0, 0]
     row = out[0]
     assert torch.all(out == row)  # constant down the columns
     assert torch.all(row[1:-1] - row[:-2] > 0)  # increasing (the last pixel is the anti-aliased drop)
     torch.testing.assert_close(row[1:-1] - row[:-2], torch.full((S - 2,), 1 / (S - 1)), atol=1e-5, rtol=0)
     assert row[0] < 0.02 and row[-2] > 0.97
-    vert = _render("gradient_linear_1", rotation=0.25)[0, 0]
-    torch.testing.assert_close(vert, out.T)
-    two = _render("gradient_linear_1", tiling=2)[0, 0, 0]
+    up = _render("gradient_linear_1")[0, 0]
+    torch.testing.assert_close(up, out.T.flip(0))   # default: the same ramp rising from the bottom
+    assert up[-1, 0] < 0.02 and up[1, 0] > 0.97
+    down = _render("gradient_linear_1", rotation=0.5)[0, 0]
+    torch.testing.assert_close(down, out.T)
+    two = _render("gradient_linear_1", rotation=0.25, tiling=2)[0, 0, 0]
     torch.testing.assert_close(two[:S // 2], two[S // 2:])
 
 

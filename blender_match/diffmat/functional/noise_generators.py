@@ -164,7 +164,8 @@ def noise_recipe(recipe: Recipe, *, scale=1.0, disorder=0.0, roughness=None, bal
 # generators that are not recipes
 def noise_white(*, size: int = 512, seed: int = 0, device=None, dtype=torch.float32) -> torch.Tensor:
     """White Noise: an independent uniform value per texel of a fixed 512 x 512 texture-space
-    lattice (per pixel at 512; blocks above, box-averaged below, so renders agree across sizes)."""
+    lattice (per pixel at 512; blocks above; below, box averages re-toned to a uniform histogram,
+    see ``white_lattice_noise``)."""
     return white_lattice_noise(size, cells=512, seed=seed, key="white_noise", device=device, dtype=dtype)
 
 
@@ -238,16 +239,18 @@ NOISE_RECIPES: dict[str, tuple[Recipe, tuple, tuple]] = {
     "perlin_noise_zoom": (Recipe(cells=1, octaves=6, roughness=0.5, gain=0.55), (1, 64, 10), ()),
     # Clouds 1: soft value-noise clouds, 8 octaves from 2 cells
     "clouds_1": (Recipe(kind="value", cells=2, octaves=8, roughness=0.5, gain=0.45), (1, 32, 1), ()),
-    # Clouds 2: more contrasted, more detailed gradient clouds
-    "clouds_2": (Recipe(cells=2, octaves=8, roughness=0.6, gain=0.6), (1, 32, 1), ()),
+    # Clouds 2: more contrasted, more detailed gradient clouds; Substance builds it from FX-map levels of
+    # 8 to 256 patterns across (each 5 x 1 cells, randomly turned) with roughness 0.66 per level
+    "clouds_2": (Recipe(cells=4, octaves=7, roughness=0.66, gain=0.7), (1, 32, 1), ()),
     # Clouds 3: very soft, large, slightly swirled clouds
     "clouds_3": (Recipe(kind="value", interp="cubic", cells=1, octaves=5, roughness=0.45, warp=0.05, gain=0.4),
                  (1, 32, 1), ()),
-    # BnW Spots 1/2/3: high-contrast spots (black and white blobs), coarse to fine
+    # BnW Spots 1/2/3: black and white spots, coarse to fine. Substance's BnW Spots 3 sums FX-map levels of
+    # 4 to 512 patterns across at equal opacity (roughness 1) into a mid-gray range: dense speckle over
+    # soft mottling, not saturated blobs; Spots 2 lies between it and the coarse Spots 1
     "bnw_spots_1": (Recipe(cells=4, octaves=5, roughness=0.5, gain=1.6), (1, 32, 1), ()),
-    "bnw_spots_2": (Recipe(cells=4, octaves=6, roughness=0.6, mode="billow", gain=1.8, offset=-0.3),
-                    (1, 32, 1), ()),
-    "bnw_spots_3": (Recipe(cells=8, octaves=4, roughness=0.7, gain=2.0), (1, 32, 1), ()),
+    "bnw_spots_2": (Recipe(cells=4, octaves=7, roughness=0.75, gain=1.5), (1, 32, 1), ()),
+    "bnw_spots_3": (Recipe(cells=4, octaves=7, roughness=0.9, gain=0.9), (1, 32, 1), ()),
     # Moisture Noise: warped fractal stains
     "moisture_noise": (Recipe(cells=2, octaves=7, roughness=0.55, warp=0.06, gain=0.8), (1, 32, 1), ()),
     # Fractal Sum 1-4: presets of a fractal sum (plain value, ridged, billowed, fine gradient)

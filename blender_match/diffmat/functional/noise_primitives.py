@@ -497,12 +497,23 @@ def gaussian_spot_field(cells: int, size: int, *, seed: int = 0, key="spots", ra
 def white_lattice_noise(size: int, *, cells: int = 512, seed: int = 0, key="white", device=None,
                         dtype=torch.float32) -> torch.Tensor:
     """Uniform white noise on a fixed texture-space lattice of ``cells`` x ``cells`` values:
-    shown as blocks above that size, box-averaged below it. (1, 1, size, size) in [0, 1]."""
+    shown as blocks above that size; below it, box-averaged and then mapped through its own ranks
+    back to a uniform histogram. (1, 1, size, size) in [0, 1].
+
+    Substance draws white noise per pixel at every output size, so its histogram is uniform on
+    [0, 1] whatever the size. Plain box averages of k values keep the mean but shrink the spread
+    by sqrt(k) and never reach 0 or 1, so a threshold downstream (levels, histogram scan: sparse
+    dots, scratches, speckle) finds nothing at small sizes. The rank map is monotone, so the small
+    render is still the box-downsampled large one, only re-toned to a uniform histogram."""
     g = _rng(seed, key, cells)
-    lat = torch.rand(1, 1, cells, cells, generator=g, dtype=torch.float64).to(device=device, dtype=dtype)
+    lat = torch.rand(1, 1, cells, cells, generator=g, dtype=torch.float64)
     if size >= cells:
+        lat = lat.to(device=device, dtype=dtype)
         return lat.repeat_interleave(size // cells, -1).repeat_interleave(size // cells, -2)
-    return F.avg_pool2d(lat, cells // size)
+    avg = F.avg_pool2d(lat, cells // size).reshape(-1)
+    ranks = torch.empty_like(avg)
+    ranks[torch.argsort(avg, stable=True)] = torch.arange(avg.numel(), dtype=torch.float64)
+    return ((ranks + 0.5) / avg.numel()).reshape(1, 1, size, size).to(device=device, dtype=dtype)
 
 
 # ----------------------------------------------------------------------------------------------

@@ -485,10 +485,11 @@ def _ramp(t: torch.Tensor, pw: float) -> torch.Tensor:
 
 def linear_gradient(*, tiling: int = 1, rotation=0.0, size: int = 512, device=None,
                     dtype=torch.float32) -> torch.Tensor:
-    """Gradient Linear 1: a black-to-white ramp repeated ``tiling`` times along the x axis,
-    turned by ``rotation`` (quarter turns)."""
+    """Gradient Linear 1: a black-to-white ramp repeated ``tiling`` times, rising upwards at
+    rotation 0 (white at the top, black at the bottom, as Substance's) and turned clockwise by
+    ``rotation`` (quarter turns: 1/4 rises to the right)."""
     tiling = check_int(tiling, "gradient_linear_1.tiling", 1, 256)
-    t = _axis_coordinate(size, rotation, device, dtype) * tiling
+    t = _axis_coordinate(size, rotation - 0.25, device, dtype) * tiling
     return _ramp(t, tiling / size)
 
 

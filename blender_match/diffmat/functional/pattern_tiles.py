@@ -81,7 +81,7 @@ def _tile_generator(where: str, image, args: dict):
 
 
 def tile_pattern(pattern_input_1=None, *, x_amount: int = 10, y_amount: int = 10, pattern: int = 1,
-                 pattern_specific=0.5, scale=1.0, size_xy=(1.0, 1.0), interstice=(0.0, 0.0), offset=0.0,
+                 pattern_specific=0.2, scale=1.0, size_xy=(1.0, 1.0), interstice=(0.0, 0.0), offset=0.0,
                  position_random=0.0, scale_random=0.0, rotation=0.0, rotation_random=0.0, luminance_random=0.0,
                  mask_random=0.0, softness=0.0, size: int = 512, seed: int = 0, device=None,
                  dtype=torch.float32) -> torch.Tensor:
@@ -93,7 +93,7 @@ def tile_pattern(pattern_input_1=None, *, x_amount: int = 10, y_amount: int = 10
 
 
 def tile_pattern_color(pattern_input_1=None, *, x_amount: int = 10, y_amount: int = 10, pattern: int = 1,
-                       pattern_specific=0.5, scale=1.0, size_xy=(1.0, 1.0), interstice=(0.0, 0.0), offset=0.0,
+                       pattern_specific=0.2, scale=1.0, size_xy=(1.0, 1.0), interstice=(0.0, 0.0), offset=0.0,
                        position_random=0.0, scale_random=0.0, rotation=0.0, rotation_random=0.0,
                        luminance_random=0.0, mask_random=0.0, softness=0.0, color_random=1.0,
                        pattern_color=(1.0, 1.0, 1.0, 1.0), background_color=(0.0, 0.0, 0.0, 1.0),

@@ -38,7 +38,7 @@ register(NodeSpec(
             Param("rotation", 0.0, 0.0, 1.0, optimizable=False,
                   doc="turns, snapped to quarter turns (a ramp in another direction cannot tile)")),
     context=GEN_NOSEED,
-    doc="Gradient Linear 1: a black-to-white ramp along x, repeated tiling times."))
+    doc="Gradient Linear 1: a ramp from black (bottom) to white (top), turned, repeated tiling times."))
 
 register(NodeSpec(
     "gradient_linear_2", "generator", F.mirrored_linear_gradient,

@@ -13,7 +13,7 @@ def _layout(pattern=8, scale=1.0):
         Param("x_amount", 10, 1, 64, kind="int", doc="tiles across"),
         Param("y_amount", 10, 1, 64, kind="int", doc="tiles down"),
         Param("pattern", pattern, kind="enum", choices=tuple(range(len(TILE_PATTERNS))), doc=PATTERN_DOC),
-        Param("pattern_specific", 0.5, 0.0, 1.0, doc="shape-dependent control"),
+        Param("pattern_specific", 0.2, 0.0, 1.0, doc="shape-dependent control (Brick: bevel width)"),
         Param("scale", scale, 0.0, 2.0, doc="1 fills the cell"),
         Param("size_xy", (1.0, 1.0), 0.0, 2.0, size=2,
               doc="non-uniform size (Substance's 'Size'; renamed: 'size' is the output size)"),
