@@ -66,7 +66,9 @@ def load_library_graph(name: str, mode: str = "exposed_plus"):
     from ..translator import load_sbs_graph
 
     entry = library_entry(name)
-    return load_sbs_graph(entry["path"], entry.get("graph"), mode=mode)
+    graph = load_sbs_graph(entry["path"], entry.get("graph"), mode=mode)
+    graph.name = name  # a user file's graph keeps its own identifier in the package; reports use the library's
+    return graph
 
 
 def apply_params(graph, params: dict):

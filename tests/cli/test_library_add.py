@@ -69,6 +69,7 @@ def test_the_added_graph_has_its_thumbnail_bank_and_listing(in_library, capsys):
 
 def test_automatic_ranking_picks_the_user_graph_on_a_render_of_itself(in_library):
     graph = load_library_graph(USER_GRAPH)
+    assert graph.name == USER_GRAPH  # not the graph's identifier in its package ("OutputSizeExample")
     with torch.no_grad():
         photo = render_maps(graph(size=256, seed=5)).clamp(0, 1)
     ranking = rank_graphs(photo, graphs=[USER_GRAPH, "plaster", "bricks", "painted_metal", "ceramic_tiles"])
