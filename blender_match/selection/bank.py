@@ -11,7 +11,8 @@ Files: ``<name>.bank.pt`` in the models folder of the graph's library (``library
 shipped graphs), a ``torch.save`` of plain tensors, strings and numbers
 (``torch.load(..., weights_only=True)`` reads it): ``descriptors`` (N, D) float16, ``thetas``
 (N, P) float32, ``indices`` (the sample indices k), and what makes it current: the SHA-256 of
-the graph's ``.sbs`` and ``.json`` (``graph_hash``), the descriptor kind; and the render size and seed.
+the graph's ``.sbs``, its ``.json`` and the engine's render revision (``graph_hash``), the
+descriptor kind; and the render size and seed.
 
 This module also holds what the bank and the predictor's training share: the models folder,
 the staleness hash, parameter vectors of samples and rendering + describing them.
@@ -26,6 +27,7 @@ from pathlib import Path
 import torch
 
 from ..diffmat.render import render_maps
+from ..diffmat.revision import RENDER_REVISION
 from ..library import (
     apply_params,
     library_entry,
@@ -49,10 +51,12 @@ def models_dir(path, name: str) -> Path:
 
 
 def graph_hash(name: str) -> str:
-    """SHA-256 of a library graph's shipped .sbs file and its metadata (the translated parameter
-    space, sampling ranges): a model built from either one changed is stale, so a translator
-    change that moves the parameter vector retrains the graphs it touches."""
-    return hashlib.sha256(library_path(name).read_bytes() + metadata_file(name).read_bytes()).hexdigest()
+    """SHA-256 of a library graph's .sbs file, its metadata (the translated parameter space,
+    sampling ranges) and the engine's render revision: a model built before any of them changed
+    is stale, so a translator change that moves the parameter vector retrains the graphs it
+    touches, and an engine change that moves their looks retrains them all."""
+    revision = f"render revision {RENDER_REVISION}".encode()
+    return hashlib.sha256(library_path(name).read_bytes() + metadata_file(name).read_bytes() + revision).hexdigest()
 
 
 def save_torch(obj, path: Path):

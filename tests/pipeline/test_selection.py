@@ -6,7 +6,7 @@ import json
 import pytest
 import torch
 
-from blender_match.library import library_names
+from blender_match.library import builtin_names, library_names, load_library_graph
 from blender_match.selection import predictor
 from blender_match.selection.bank import (
     SampleSpace,
@@ -142,6 +142,28 @@ def test_the_library_is_trained_and_indexed():
         assert meta["descriptor_dim"] == DESCRIPTOR_DIM and meta["training_samples"] > 0
     total = sum(p.stat().st_size for p in MODELS_DIR.glob("*.pt"))
     assert total < 50 * 2 ** 20
+
+
+@pytest.mark.parametrize("name", builtin_names())
+def test_the_shipped_banks_describe_what_the_engine_renders_now(name):
+    """A node change that moves a library graph's look leaves its models describing renders the
+    engine no longer draws, with no file hash to notice: re-rendering a bank's first samples must
+    give their stored descriptors back (stored as float16: about 2e-4 apart; another sample of the
+    same graph is about 0.5 away)."""
+    bank = load_bank(name)
+    images = render_images(load_library_graph(name), bank["thetas"][:2], bank["seed"], bank["size"])
+    moved = descriptor_distance(describe(images, "cpu", bank["size"]), bank["descriptors"][:2].float()).diagonal()
+    assert float(moved.max()) < 0.01, (f"{name}: the engine renders it differently from its bank ({moved.tolist()}): "
+                                       "raise diffmat.revision.RENDER_REVISION and retrain (blender-match train --all)")
+
+
+def test_a_new_render_revision_makes_the_models_stale(monkeypatch):
+    from blender_match.diffmat import revision
+    from blender_match.selection import bank as bank_module
+
+    assert bank_is_current("plaster") and predictor_is_current("plaster")
+    monkeypatch.setattr(bank_module, "RENDER_REVISION", revision.RENDER_REVISION + 1)
+    assert not bank_is_current("plaster") and not predictor_is_current("plaster")
 
 
 def _synthetic_photo(tmp_path, name="marble", k=100_003, seed=300_001):
