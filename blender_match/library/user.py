@@ -68,8 +68,8 @@ def user_entry(name: str) -> dict | None:
     return entry if isinstance(entry, dict) else None
 
 
-def _copy_package(sbs: Path, folder: Path) -> Path:
-    """Copy ``sbs`` and its local dependencies into ``folder``; the copy of ``sbs``."""
+def _copy_package(sbs: Path, folder: Path) -> None:
+    """Copy ``sbs`` and its local dependencies (at their relative paths) into ``folder``."""
     base = sbs.parent
     for relative in local_dependencies(sbs):
         if relative.startswith("..") or Path(relative).is_absolute():
@@ -78,9 +78,7 @@ def _copy_package(sbs: Path, folder: Path) -> Path:
         if source.is_file():
             (folder / relative).parent.mkdir(parents=True, exist_ok=True)
             shutil.copyfile(source, folder / relative)
-    copy = folder / sbs.name
-    shutil.copyfile(sbs, copy)
-    return copy
+    shutil.copyfile(sbs, folder / sbs.name)
 
 
 def _check_renders(graph, sbs: Path) -> None:
