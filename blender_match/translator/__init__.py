@@ -31,7 +31,7 @@ from dataclasses import dataclass
 from ..errors import BlenderMatchError
 from . import dataflow
 from .assemble import assemble, finalize
-from .build import USAGES, Builder, xml_name
+from .build import USAGES, Builder, local_dependency, xml_name
 from .codegen import generate
 from .errors import TranslatorError
 from .parse import load_package
@@ -99,17 +99,18 @@ def translate(path, graph_name: str | None = None, mode: str = "exposed_plus", *
 
 
 def local_dependencies(path) -> list[str]:
-    """The local files (relative paths, as the document writes them, ``file://`` removed) that the
-    .sbs file at ``path`` and, recursively, the ones among them that exist name as dependencies;
-    ``sbs://`` references to Substance's own library, which the engine implements, are not listed."""
+    """The local files (relative paths, as the document writes them) that the .sbs file at
+    ``path`` and, recursively, the ones among them that exist name as dependencies: those the
+    translator reads from disk (``build.local_dependency``); ``sbs://`` references to Substance's
+    own library, which the engine implements, are not listed."""
     seen: dict[str, str] = {}
     stack = [(os.path.abspath(str(path)), "")]
     while stack:
         file, prefix = stack.pop()
         pkg = load_package(file, read_document(file, MAX_BYTES))
         for name in pkg.dependencies.values():
-            ref = name[len("file://"):] if name.startswith("file://") else name
-            if "://" in ref or ref == "?himself":
+            ref = local_dependency(name)
+            if ref is None:
                 continue
             relative = os.path.normpath(os.path.join(prefix, ref))
             target = os.path.abspath(os.path.join(os.path.dirname(file), ref))

@@ -116,6 +116,17 @@ def _variant_candidates(name: str) -> list[str]:
     return out
 
 
+SELF_DEPENDENCY = "?himself"
+
+
+def local_dependency(filename: str | None) -> str | None:
+    """The path (relative to its package) of a dependency the translator reads from disk, or None
+    for the package itself, Substance's library (``sbs://``) and any other URL, which it does not."""
+    if filename is None or filename == SELF_DEPENDENCY or "://" in filename:
+        return None
+    return filename
+
+
 def _split_path(path: str) -> tuple[str, str | None]:
     """``pkg:///group/name?dependency=UID`` -> ("group/name", "UID")."""
     body = path.split("://", 1)[1] if "://" in path else path
@@ -684,15 +695,15 @@ class Builder:
         gname = gpath.rsplit("/", 1)[-1]
         filename = pkg.dependencies.get(dep) if dep is not None else None
         if filename is None and dep is None and gpath:
-            filename = "?himself"
-        local = filename is not None and (filename == "?himself" or "://" not in filename)
-        if local:
-            sub_pkg = pkg if filename == "?himself" else self._load_dependency(pkg, filename)
+            filename = SELF_DEPENDENCY
+        local = local_dependency(filename)
+        if filename == SELF_DEPENDENCY or local is not None:
+            sub_pkg = pkg if local is None else self._load_dependency(pkg, local)
             sub = sub_pkg.find_graph(gpath) or sub_pkg.find_graph(gname)
             if sub is not None:
                 self._inline(sub_pkg, sub, node, conns, env, refs, size, fmt, seed, depth, stack)
                 return
-            if filename == "?himself" or not has_spec(gname.lower()):
+            if filename == SELF_DEPENDENCY or not has_spec(gname.lower()):
                 self.stats.warn(f"{where}: graph {safe_name(gname, 'graph')!r} not found in its package")
         for cand in _library_candidates(gname, filename):
             if has_spec(cand):
@@ -707,8 +718,6 @@ class Builder:
 
     def _load_dependency(self, pkg: Package, filename: str) -> Package:
         base = os.path.dirname(os.path.abspath(pkg.path))
-        if filename.startswith("file://"):
-            filename = filename[len("file://"):]
         target = os.path.abspath(os.path.join(base, filename))
         if target in self.packages:
             return self.packages[target]
