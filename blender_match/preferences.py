@@ -11,6 +11,7 @@ import bpy
 from bpy.props import EnumProperty, StringProperty
 
 from .blender import addon, match_job
+from .library.catalog import USER
 from .vocabulary import DEFAULT_DEVICE
 
 
@@ -19,7 +20,7 @@ def draw_preferences(prefs, layout, context):
     layout.prop(prefs, "worker_python")
     layout.prop(prefs, "default_device")
     layout.prop(prefs, "user_library")
-    users = [name for name, graph in addon.library_graphs().items() if graph["library"] == "user"]
+    users = [name for name, graph in addon.library_graphs().items() if graph["library"] == USER]
     layout.label(text=f"{len(users)} graph(s) of your own in {addon.user_library_dir()} "
                       "(add them with: blender-match library add PATH.sbs|FOLDER)", icon='ASSET_MANAGER')
 

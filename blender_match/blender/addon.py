@@ -132,7 +132,7 @@ def library_graphs() -> dict[str, dict]:
             graphs[name] = {"name": entry.get("name", name), "description": entry.get("description", ""),
                             "exposed": list(entry.get("exposed") or []),
                             "exposed_params": dict(entry.get("exposed_params") or {}),
-                            "library": entry.get("library", "built-in")}
+                            "library": entry["library"]}
         _GRAPHS = graphs
     return _GRAPHS
 

@@ -87,7 +87,10 @@ def check_name(name: str) -> str:
 
 def library_root(name: str) -> Path:
     """The folder of the library holding graph ``name`` (with its ``graphs/`` and ``models/``)."""
-    return LIBRARY_DIR if check_name(name) in builtin_names() else user_library_dir()
+    if name in builtin_names():  # most lookups: one listing of the shipped folder
+        return LIBRARY_DIR
+    check_name(name)
+    return user_library_dir()
 
 
 def models_folder(name: str) -> Path:
@@ -105,8 +108,8 @@ def library_entry(name: str) -> dict:
     exposed, exposed_params, sample_ranges ({"node.param": [lo, hi]}, names as in the translated
     graph)... plus "path", its .sbs file, and "library", BUILT_IN or USER. A user entry also has
     "graph" (the graph's identifier in its package) and "origin" (the file it was added from)."""
-    root = library_root(name)
     path = metadata_file(name)
+    root = path.parent.parent
     try:
         entry = json.loads(path.read_text(encoding="utf-8"))
     except (OSError, UnicodeDecodeError, json.JSONDecodeError) as exc:

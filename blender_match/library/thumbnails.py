@@ -31,14 +31,15 @@ def thumbnail_path(name: str, out_dir: Path = GRAPHS_DIR) -> Path:
 
 def render_thumbnail(name: str, size: int = THUMBNAIL_SIZE, seed: int = 0):
     """The (1, 3, size, size) sRGB flash render of library graph ``name`` at its defaults."""
-    return flash_thumbnail(load_library_graph(name), size, seed)
+    return flash_render(load_library_graph(name), size, seed).clamp(0, 1)
 
 
-def flash_thumbnail(graph, size: int = THUMBNAIL_SIZE, seed: int = 0):
-    """The (1, 3, size, size) sRGB flash render of a material graph at its current parameters."""
+def flash_render(graph, size: int = THUMBNAIL_SIZE, seed: int = 0):
+    """The (1, 3, size, size) sRGB flash render of a material graph at its current parameters, on
+    the CPU and not clamped (so that a caller can see values that are not finite)."""
     with torch.no_grad():
         maps = graph(size=size, seed=seed)
-        return render_maps({usage: m.float().cpu() for usage, m in maps.items()}).clamp(0, 1)
+        return render_maps({usage: m.float().cpu() for usage, m in maps.items()})
 
 
 def write_thumbnails(names=None, size: int = THUMBNAIL_SIZE, out_dir: Path = GRAPHS_DIR,

@@ -24,15 +24,12 @@ from pathlib import Path
 import torch
 
 from ..diffmat.errors import DiffMatError
-from ..diffmat.render import render_maps
 from ..image_files import write_png
 from ..safe_files import write_atomic
 from ..translator import TranslatorError, load_sbs_graph, local_dependencies
 from .build import graph_summary, sample_ranges
 from .catalog import NAME, LibraryError, builtin_names, user_library_dir, user_names
-from .thumbnails import THUMBNAIL_SIZE, flash_thumbnail
-
-CHECK_SIZE = 64
+from .thumbnails import flash_render
 
 
 def entry_name(path: Path) -> str:
@@ -81,17 +78,18 @@ def _copy_package(sbs: Path, folder: Path) -> None:
     shutil.copyfile(sbs, folder / sbs.name)
 
 
-def _check_renders(graph, sbs: Path) -> None:
+def _checked_thumbnail(graph, sbs: Path) -> torch.Tensor:
+    """The graph's flash render at its defaults, thumbnail-sized, clamped to [0, 1];
+    LibraryError when it cannot be rendered or is not finite."""
+    if not graph.outputs:
+        raise LibraryError(f"{sbs}: the graph has no material output")
     try:
-        with torch.no_grad():
-            maps = graph(size=CHECK_SIZE, seed=0)
-            image = render_maps({usage: m.float() for usage, m in maps.items()})
+        image = flash_render(graph)
     except (DiffMatError, RuntimeError, ValueError) as exc:
         raise LibraryError(f"{sbs}: cannot be rendered ({exc})") from None
-    if not maps:
-        raise LibraryError(f"{sbs}: the graph has no material output")
     if not bool(torch.isfinite(image).all()):
         raise LibraryError(f"{sbs}: its render has values that are not finite")
+    return image.clamp(0, 1)
 
 
 def add_entry(sbs, name: str | None = None, graph_name: str | None = None, overwrite: bool = False) -> dict:
@@ -110,13 +108,12 @@ def add_entry(sbs, name: str | None = None, graph_name: str | None = None, overw
         graph = load_sbs_graph(sbs, graph_name)
     except TranslatorError as exc:
         raise LibraryError(str(exc)) from None
-    _check_renders(graph, sbs)
+    thumbnail = _checked_thumbnail(graph, sbs)
     report = graph.report
     meta = {"name": name, "file": f"{name}/{sbs.name}", "description": f"{report['graph']} from {sbs.name}",
             "graph": report["graph"], "origin": str(sbs), "sha256": file_sha256(sbs),
             "nodes_passthrough": report["nodes_passthrough"], **graph_summary(graph),
             "sample_ranges": sample_ranges(graph, {}, {}, name)}
-    thumbnail = flash_thumbnail(graph, THUMBNAIL_SIZE)
     graphs = user_library_dir() / "graphs"
     graphs.mkdir(parents=True, exist_ok=True)
     with tempfile.TemporaryDirectory(dir=graphs, prefix=f".adding-{name}-") as tmp:
