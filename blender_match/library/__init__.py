@@ -1,7 +1,8 @@
 """The material library: production-style procedural materials shipped as Substance ``.sbs`` files.
 
 Each material is written in Python in ``sources/<name>.py`` (the authoring contract: a module
-docstring, ``build() -> SbsGraph`` and ``SAMPLE_RANGES``), exported by
+docstring, ``build() -> SbsGraph``,
+``FAMILY`` (a key of ``catalog.FAMILIES``) and ``SAMPLE_RANGES``), exported by
 ``python -m blender_match.library.build`` to ``graphs/<name>.sbs`` (the Substance document) and
 ``graphs/<name>.json`` (metadata: node and parameter counts, exposed parameters, sampling ranges
 keyed by the parameter names of the graph as ``load_sbs_graph`` returns it). At run time only the
@@ -25,6 +26,7 @@ import pkgutil
 from . import sources
 from .catalog import (
     GRAPHS_DIR,
+    FAMILIES,
     LIBRARY_DIR,
     MODELS_DIR,
     LibraryError,

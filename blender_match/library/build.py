@@ -34,7 +34,7 @@ from ..diffmat.errors import DiffMatError
 from ..errors import BlenderMatchError
 from ..safe_files import write_atomic
 from ..translator import load_sbs_graph
-from . import GRAPHS_DIR, build_source, source_module, source_names
+from . import FAMILIES, GRAPHS_DIR, build_source, source_module, source_names
 from .sbs_export import export_sbs
 
 DEFAULT_SPREAD = 0.15
@@ -162,6 +162,9 @@ def build_one(name: str) -> tuple[str, str]:
     declared = getattr(module, "SAMPLE_RANGES", None)
     if not isinstance(declared, dict):
         raise DiffMatError(f"sources/{name}.py: SAMPLE_RANGES must be a dict")
+    family = getattr(module, "FAMILY", None)
+    if family not in FAMILIES:
+        raise DiffMatError(f"sources/{name}.py: FAMILY must be one of {', '.join(FAMILIES)}, not {family!r}")
     graph = build_source(name)
     description = doc.splitlines()[0].strip()
     text = export_sbs(graph, description)
@@ -174,7 +177,7 @@ def build_one(name: str) -> tuple[str, str]:
         raise DiffMatError(f"sources/{name}.py: {report['nodes_passthrough']} node(s) translate as pass-through "
                            f"({report['unsupported']})")
     mapping = match_nodes(graph, translated)
-    meta = {"name": name, "file": f"{name}.sbs", "description": description, **graph_summary(translated),
+    meta = {"name": name, "file": f"{name}.sbs", "description": description, "family": family, **graph_summary(translated),
             "sample_ranges": sample_ranges(translated, mapping, declared, name),
             "node_names": dict(sorted(mapping.items()))}
     return text, json.dumps(meta, indent=1) + "\n"

@@ -29,6 +29,20 @@ MODELS_DIR = LIBRARY_DIR / "models"
 USER_LIBRARY_ENV = "BLENDER_MATCH_LIBRARY"
 NAME = re.compile(r"^[a-z][a-z0-9_]*$")
 BUILT_IN, USER = "built-in", "user"
+FAMILIES = {
+    "fabric": "Fabric",
+    "leather": "Leather",
+    "metal": "Metal",
+    "stone": "Stone",
+    "plaster": "Plaster & concrete",
+    "wood": "Wood",
+    "tile": "Tile & brick",
+    "coating": "Paint & coating",
+    "ground": "Ground & other",
+}
+"""Material families (key: label), in the order the add-on's graph picker shows them. A library
+source declares its family (``FAMILY``); a user entry has none (the picker files it under its
+library's label)."""
 
 
 class LibraryError(BlenderMatchError):

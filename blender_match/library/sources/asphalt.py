@@ -101,6 +101,8 @@ def build() -> SbsGraph:
     return g
 
 
+FAMILY = "ground"
+
 SAMPLE_RANGES = {
     "exposed.binder_color": ([0.06, 0.06, 0.06], [0.32, 0.31, 0.30]),
     "exposed.stone_size": (0.7, 1.3),

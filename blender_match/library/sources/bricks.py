@@ -127,6 +127,8 @@ def build() -> SbsGraph:
     return g
 
 
+FAMILY = "tile"
+
 SAMPLE_RANGES = {
     "exposed.brick_color": ((0.38, 0.15, 0.09), (0.66, 0.36, 0.24)),
     "exposed.brick_variation": (0.3, 1.0),

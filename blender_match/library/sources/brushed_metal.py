@@ -101,6 +101,8 @@ def build() -> SbsGraph:
     return g
 
 
+FAMILY = "metal"
+
 SAMPLE_RANGES = {
     "exposed.metal_color": ([0.55, 0.55, 0.56], [0.85, 0.86, 0.88]),
     "exposed.roughness": (0.12, 0.55),

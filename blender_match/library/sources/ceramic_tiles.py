@@ -138,6 +138,8 @@ def build() -> SbsGraph:
     return g
 
 
+FAMILY = "tile"
+
 SAMPLE_RANGES = {
     "exposed.tile_color": ((0.55, 0.58, 0.58), (0.92, 0.92, 0.90)),
     "exposed.grout_brightness": (0.3, 0.85),

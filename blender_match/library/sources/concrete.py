@@ -115,6 +115,8 @@ def build() -> SbsGraph:
     return g
 
 
+FAMILY = "plaster"
+
 SAMPLE_RANGES = {
     "exposed.color": ([0.40, 0.39, 0.37], [0.62, 0.61, 0.59]),
     "exposed.scale": (0.6, 1.8),

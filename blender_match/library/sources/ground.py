@@ -106,6 +106,8 @@ def build() -> SbsGraph:
     return g
 
 
+FAMILY = "ground"
+
 SAMPLE_RANGES = {
     "exposed.soil_color": ([0.28, 0.21, 0.15], [0.46, 0.37, 0.28]),
     "exposed.gravel": (0.1, 0.95),

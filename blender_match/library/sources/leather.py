@@ -114,6 +114,8 @@ def build() -> SbsGraph:
     return g
 
 
+FAMILY = "leather"
+
 SAMPLE_RANGES = {
     "exposed.leather_color": ((0.10, 0.05, 0.03), (0.55, 0.32, 0.20)),
     "exposed.grain_depth": (0.2, 0.9),

@@ -102,6 +102,8 @@ def build() -> SbsGraph:
     return g
 
 
+FAMILY = "stone"
+
 SAMPLE_RANGES = {
     "exposed.color": ([0.72, 0.70, 0.66], [0.96, 0.95, 0.94]),
     "exposed.vein_color": ([0.12, 0.12, 0.12], [0.6, 0.58, 0.56]),

@@ -93,6 +93,8 @@ def build() -> SbsGraph:
     return g
 
 
+FAMILY = "metal"
+
 SAMPLE_RANGES = {
     "exposed.paint_color": ([0.03, 0.03, 0.03], [0.75, 0.7, 0.65]),
     "exposed.paint_roughness": (0.25, 0.7),

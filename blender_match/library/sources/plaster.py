@@ -95,6 +95,8 @@ def build() -> SbsGraph:
     return g
 
 
+FAMILY = "plaster"
+
 SAMPLE_RANGES = {
     "exposed.color": ([0.50, 0.42, 0.30], [0.72, 0.62, 0.48]),
     "exposed.bump_scale": (0.6, 1.8),

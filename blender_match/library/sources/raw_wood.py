@@ -132,6 +132,8 @@ def build() -> SbsGraph:
     return g
 
 
+FAMILY = "wood"
+
 SAMPLE_RANGES = {
     "exposed.wood_color": ((0.62, 0.44, 0.26), (0.86, 0.62, 0.40)),
     "exposed.ring_contrast": (0.3, 0.9),

@@ -98,6 +98,8 @@ def build() -> SbsGraph:
     return g
 
 
+FAMILY = "stone"
+
 SAMPLE_RANGES = {
     "exposed.color": ([0.70, 0.66, 0.60], [0.88, 0.84, 0.78]),
     "exposed.scale": (0.6, 1.8),

@@ -96,6 +96,8 @@ def build() -> SbsGraph:
     return g
 
 
+FAMILY = "metal"
+
 SAMPLE_RANGES = {
     "exposed.rust_amount": (0.15, 0.85),
     "exposed.rust_color": ([0.8, 0.7, 0.6], [1.0, 1.0, 1.0]),

@@ -93,6 +93,8 @@ def build() -> SbsGraph:
     return g
 
 
+FAMILY = "stone"
+
 SAMPLE_RANGES = {
     "exposed.matrix_color": ([0.35, 0.33, 0.3], [0.92, 0.9, 0.88]),
     "exposed.chip_density": (0.3, 0.9),

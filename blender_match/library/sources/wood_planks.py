@@ -130,6 +130,8 @@ def build() -> SbsGraph:
     return g
 
 
+FAMILY = "wood"
+
 SAMPLE_RANGES = {
     "exposed.wood_color": ((0.42, 0.24, 0.12), (0.68, 0.40, 0.24)),
     "exposed.grain_contrast": (0.1, 0.7),

@@ -110,6 +110,8 @@ def build() -> SbsGraph:
     return g
 
 
+FAMILY = "fabric"
+
 SAMPLE_RANGES = {
     "exposed.warp_color": ((0.08, 0.08, 0.10), (0.80, 0.75, 0.70)),
     "exposed.weft_color": ((0.35, 0.33, 0.30), (0.90, 0.88, 0.84)),
