@@ -7,7 +7,8 @@ Targets: for each library graph with a model, ``sample_params(graph, k)`` with k
 training and none aligns pixel for pixel with what the ranking renders. Per graph:
 
 - ``top1`` / ``top3``: targets whose true graph ranks first / in the top 3 (``rank_graphs``,
-  ``method``), and the true graph's ranks;
+  ``method``), and the true graph's ranks ("-": the selection index did not shortlist it);
+- ``rank_s``: the median seconds of ``rank_graphs`` (everything before a fit starts);
 - ``pred_err``, ``bank_err``, ``default_err``: mean absolute error in normalised parameter space,
   over the components the library samples, of the predictor's output, of the bank's nearest
   sample and of the graph's default parameters, against the truth;
@@ -17,7 +18,9 @@ training and none aligns pixel for pixel with what the ranking renders. Per grap
   which the fit from the prediction first reached that same loss (None: never), ``its_ratio``
   their ratio (target: at most 0.5).
 
-The last row ("all") sums or averages over the graphs. Options for a quick run: ``graphs``,
+The row "all" sums or averages over the graphs. Then rows "rank@N": the median seconds of
+ranking the first targets of up to 8 graphs against only the first N graphs of the library, for
+N = 16, 32, ... and the whole library (how ranking grows with the library). Options for a quick run: ``graphs``,
 ``targets`` (per graph), ``fit_targets``, ``iterations``, ``quick`` (1 target, 1 fitted, 30 iterations).
 """
 from __future__ import annotations
@@ -57,6 +60,7 @@ class _GraphTally:
     its_pred: list[int | None] = field(default_factory=list)
     loss_default_start: list[float] = field(default_factory=list)
     loss_pred_start: list[float] = field(default_factory=list)
+    rank_seconds: list[float] = field(default_factory=list)
     seconds: float = 0.0
 
     def ratios(self, budget: int) -> list[float]:
@@ -69,6 +73,7 @@ class _GraphTally:
         ratios = self.ratios(budget)
         row["its_ratio"] = round(sum(ratios) / len(ratios), 3) if ratios else None
         row["top3_rate"] = round(self.top3 / max(1, self.targets), 3)
+        row["rank_seconds"] = round(_median(self.rank_seconds), 2)
         for key in ("ranks", "its_default", "its_pred", "loss_default_start", "loss_pred_start"):
             row[key] = ",".join(str(v) for v in row[key])
         return row
@@ -97,12 +102,14 @@ def run(device: str = "cpu", graphs=None, targets: int = 2, fit_targets: int = 1
         for t in range(targets):
             truth = space.vector(TARGET_K0 + t)
             photo = render_images(graph, truth[None].to(torch_device), TARGET_SEED0 + t, target_size)
+            t_rank = time.perf_counter()
             ranking = rank_graphs(photo, method, device=torch_device, materials=materials)
-            rank = next(i for i, e in enumerate(ranking) if e["graph"] == name) + 1
+            tally.rank_seconds.append(time.perf_counter() - t_rank)
+            rank = next((i + 1 for i, e in enumerate(ranking) if e["graph"] == name), None)
             tally.targets += 1
-            tally.ranks.append(rank)
+            tally.ranks.append(rank if rank is not None else "-")
             tally.top1 += rank == 1
-            tally.top3 += rank <= 3
+            tally.top3 += rank is not None and rank <= 3
             desc = describe(photo, torch_device)
             predicted = model(desc)[0].detach() if model is not None else space.default
             from_bank = nearest(bank, desc)[0]["theta"] if bank is not None else space.default
@@ -125,7 +132,38 @@ def run(device: str = "cpu", graphs=None, targets: int = 2, fit_targets: int = 1
         tally.seconds = round(time.perf_counter() - t0, 1)
         tallies.append(tally)
         print(f"bench selection: {name}: ranks {tally.ranks}, {tally.seconds}s", file=sys.stderr, flush=True)
-    return _table(tallies, schedule.iterations, time.perf_counter() - started)
+    rows = _table(tallies, schedule.iterations, time.perf_counter() - started)
+    return rows + _scaling(names, rows[0], method, torch_device, materials, target_size)
+
+
+def _median(values) -> float:
+    ordered = sorted(values)
+    return ordered[len(ordered) // 2] if ordered else 0.0
+
+
+def _scaling(names: list[str], template: dict, method: str, device, materials: dict, target_size: int,
+             photos: int = 8) -> list[dict]:
+    """Rows "rank@N": median seconds of ranking the first target of ``photos`` graphs among the
+    first N library graphs, N = 16, 32, ... and all."""
+    sizes = sorted({*range(16, len(names), 16), len(names)})
+    targets = []
+    for name in names[:: max(1, len(names) // photos)][:photos]:
+        space = SampleSpace(name)
+        graph = space.graph.to(device)
+        targets.append(render_images(graph, space.vector(TARGET_K0)[None].to(device), TARGET_SEED0, target_size))
+        graph.clear_cache()
+    rows = []
+    for size in sizes:
+        seconds = []
+        for photo in targets:
+            t0 = time.perf_counter()
+            rank_graphs(photo, method, device=device, graphs=names[:size], materials=materials)
+            seconds.append(time.perf_counter() - t0)
+        row = {key: "" for key in template}
+        row.update(graph=f"rank@{size}", targets=len(targets), rank_seconds=round(_median(seconds), 2))
+        rows.append(row)
+        print(f"bench selection: ranking among {size} graphs: {row['rank_seconds']}s", file=sys.stderr, flush=True)
+    return rows
 
 
 def _table(tallies: list[_GraphTally], budget: int, seconds: float) -> list[dict]:
@@ -142,6 +180,7 @@ def _table(tallies: list[_GraphTally], budget: int, seconds: float) -> list[dict
                "its_pred": f"{sum(1 for d, p in pairs if p is not None and d)}/{len(pairs)} reached",
                "loss_default_start": "", "loss_pred_start": "", "seconds": round(seconds, 1),
                "its_ratio": round(ratios[len(ratios) // 2], 3) if ratios else None,
+               "rank_seconds": round(_median([r for t in tallies for r in t.rank_seconds]), 2),
                "top3_rate": round(top3 / max(1, targets), 3)}
     rows = [t.row(budget) for t in tallies]
     rows.append({k: summary[k] for k in rows[0]} if rows else summary)

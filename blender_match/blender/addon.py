@@ -15,8 +15,10 @@ import bpy.utils.previews
 
 from ..errors import BlenderMatchError
 from ..library.catalog import (
+    FAMILIES,
     USER_LIBRARY_ENV,
     LibraryError,
+    family_of,
     library_entry,
     library_names,
     thumbnail_file,
@@ -132,9 +134,29 @@ def library_graphs() -> dict[str, dict]:
             graphs[name] = {"name": entry.get("name", name), "description": entry.get("description", ""),
                             "exposed": list(entry.get("exposed") or []),
                             "exposed_params": dict(entry.get("exposed_params") or {}),
-                            "library": entry["library"]}
+                            "library": entry["library"], "family": graph_family(entry)}
         _GRAPHS = graphs
     return _GRAPHS
+
+
+ALL_FAMILIES = "ALL"
+USER_FAMILY = "USER"
+
+
+def graph_family(entry: dict) -> str:
+    """The picker's category of a library entry: its family (``catalog.FAMILIES``), or USER_FAMILY
+    for the user's own graphs (which declare none)."""
+    return family_of(entry) or USER_FAMILY
+
+
+def family_items() -> list[tuple[str, str, str]]:
+    """The graph picker's categories: all, then each family that has a graph, then the user library."""
+    present = {entry["family"] for entry in library_graphs().values()}
+    items = [(ALL_FAMILIES, "All", "Every library graph")]
+    items += [(key, label, f"{label} graphs") for key, label in FAMILIES.items() if key in present]
+    if USER_FAMILY in present:
+        items.append((USER_FAMILY, "User Library", "The graphs added to your own library"))
+    return items
 
 
 def graph_title(name: str) -> str:

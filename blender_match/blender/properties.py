@@ -22,14 +22,32 @@ from . import addon
 _GRAPH_ITEMS: list = []  # Blender needs the enum items of a callback kept alive
 
 
+_FAMILY_ITEMS: list = []
+
+
+def family_items(self, context):
+    _FAMILY_ITEMS[:] = addon.family_items()
+    return _FAMILY_ITEMS
+
+
 def graph_items(self, context):
-    """'AUTO' then every library graph, with its thumbnail."""
+    """'AUTO' then the library graphs of the chosen family, with their thumbnails. A graph keeps
+    its number (its place in the whole library) whatever the family shown, since Blender stores a
+    dynamic enum's choice as that number."""
+    family = getattr(self, "graph_family", addon.ALL_FAMILIES)
     items = [("AUTO", "Automatic", "Pick the library graph that fits the photo best", "AUTO", 0)]
     for number, (name, entry) in enumerate(addon.library_graphs().items(), start=1):
-        items.append((name, addon.graph_title(name), entry.get("description") or name,
-                      addon.graph_icon(name), number))
+        if family in (addon.ALL_FAMILIES, entry["family"]):
+            items.append((name, addon.graph_title(name), entry.get("description") or name,
+                          addon.graph_icon(name), number))
     _GRAPH_ITEMS[:] = items
     return _GRAPH_ITEMS
+
+
+def family_changed(self, context):
+    """A graph outside the family now shown goes back to Automatic (the menu could not show it)."""
+    if self.graph != "AUTO" and self.graph not in {item[0] for item in graph_items(self, context)}:
+        self.graph = "AUTO"
 
 
 class BLENDER_MATCH_PG_settings(bpy.types.PropertyGroup):
@@ -42,6 +60,8 @@ class BLENDER_MATCH_PG_settings(bpy.types.PropertyGroup):
                                description="Photo of a flat material sample, taken with the flash on")
     photo_image: PointerProperty(name="Photo Image", type=bpy.types.Image,
                                  description="An image of this file to use as the photo")
+    graph_family: EnumProperty(name="Family", items=family_items, update=family_changed,
+                               description="Which family of library graphs the graph menu shows")
     graph: EnumProperty(name="Graph", items=graph_items,
                         description="The procedural graph to fit (Automatic: pick the best)")
     quality: EnumProperty(name="Quality", items=addon.QUALITY_ITEMS, default=DEFAULT_QUALITY)

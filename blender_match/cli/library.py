@@ -22,7 +22,7 @@ from ..diffmat.functional.common import check_size
 from ..diffmat.render import render_maps
 from ..errors import BlenderMatchError, OptionError
 from ..library import library_entry, library_names, load_library_graph, user_library_dir
-from ..library.catalog import USER_LIBRARY_ENV
+from ..library.catalog import FAMILIES, USER_LIBRARY_ENV, by_family, family_of
 from ..library.user import remove_entry
 from ..pipeline import resolve_device
 from ..pipeline.user_library import add_sbs, sbs_files
@@ -30,7 +30,7 @@ from ..safe_files import write_atomic
 from ._progress import progress_bar
 
 LABEL_HEIGHT = 18
-COLUMNS = 4
+COLUMNS = 8
 
 
 def _listing_options(p):
@@ -66,13 +66,15 @@ def entries() -> list[dict]:
     out = []
     for name in library_names():
         e = library_entry(name)
-        out.append({"name": e["name"], "library": e["library"], "file": e["path"], "nodes": e["nodes"],
+        out.append({"name": e["name"], "library": e["library"], "family": family_of(e), "file": e["path"],
+                    "nodes": e["nodes"],
                     "params_optimizable": e["params_optimizable"], "exposed": e["exposed"]})
     return out
 
 
 def contact_sheet(names: list[str], size: int = 256, seed: int = 0):
-    """A PIL image: each graph rendered under the flash, its name below, in rows of COLUMNS."""
+    """A PIL image: each graph rendered under the flash, its name (and family) below, in rows of
+    COLUMNS, in the order given."""
 
     cols = min(COLUMNS, max(1, len(names)))
     rows = max(1, math.ceil(len(names) / cols))
@@ -86,7 +88,8 @@ def contact_sheet(names: list[str], size: int = 256, seed: int = 0):
         arr = (img.clamp(0, 1).permute(1, 2, 0).numpy() * 255 + 0.5).astype(np.uint8)
         x, y = (i % cols) * size, (i // cols) * (size + LABEL_HEIGHT)
         sheet.paste(Image.fromarray(arr), (x, y))
-        draw.text((x + 4, y + size + 3), name, fill=(235, 235, 235), font=font)
+        family = FAMILIES.get(family_of(library_entry(name)), "user")
+        draw.text((x + 4, y + size + 3), f"{name} ({family})", fill=(235, 235, 235), font=font)
     return sheet
 
 
@@ -95,7 +98,7 @@ def run(args) -> int:
         listed = entries()
         width = max((len(e["name"]) for e in listed), default=0) + 2
         for e in listed:
-            print(f"{e['name']:<{width}}{e['library']:<10}nodes {e['nodes']:>4}  params {e['params_optimizable']:>4}  "
+            print(f"{e['name']:<{width}}{e['library']:<10}{e['family'] or '-':<9}nodes {e['nodes']:>4}  params {e['params_optimizable']:>4}  "
                   f"exposed {', '.join(e['exposed'])}")
         return 0
     if args.json:
@@ -104,7 +107,7 @@ def run(args) -> int:
         if args.sheet.exists() and not args.overwrite:
             raise FileExistsError(f"{args.sheet}: already exists (use --overwrite to replace it)")
         check_size(args.size, "--size")
-        names = library_names()
+        names = by_family(library_names())
         if not names:
             raise OptionError("library: no library graphs are built (python -m blender_match.library.build)")
         buf = io.BytesIO()

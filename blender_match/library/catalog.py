@@ -91,6 +91,18 @@ def library_names() -> list[str]:
     return builtin_names() + user_names()
 
 
+def family_of(entry: dict) -> str | None:
+    """The family (a key of FAMILIES) of a library entry, None for a user entry or an unknown one."""
+    family = entry.get("family")
+    return family if entry.get("library") != USER and family in FAMILIES else None
+
+
+def by_family(names: list[str]) -> list[str]:
+    """Library graph names grouped by family in FAMILIES' order, then the user's, each group sorted."""
+    order = {key: i for i, key in enumerate(FAMILIES)}
+    return sorted(names, key=lambda n: (order.get(family_of(library_entry(n)), len(order)), n))
+
+
 def check_name(name: str) -> str:
     """``name`` when it names a library graph, else LibraryError listing the library."""
     if not isinstance(name, str) or not NAME.match(name) or name not in library_names():

@@ -9,10 +9,14 @@ adds its bank; nothing else is recomputed.
 
 Files: ``<name>.bank.pt`` in the models folder of the graph's library (``library/models/`` for the
 shipped graphs), a ``torch.save`` of plain tensors, strings and numbers
-(``torch.load(..., weights_only=True)`` reads it): ``descriptors`` (N, D) float16, ``thetas``
-(N, P) float32, ``indices`` (the sample indices k), and what makes it current: the SHA-256 of
-the graph's ``.sbs``, its ``.json`` and the engine's render revision (``graph_hash``), the
-descriptor kind; and the render size and seed.
+(``torch.load(..., weights_only=True)`` reads it): the descriptors (N, D) quantised to 8 bits
+per value between each dimension's lowest and highest value over the bank (``codes`` uint8,
+``low`` and ``step`` (D,) float32: a step is about 1/255 of a spread of a few log units, far
+below the differences between samples, and the file is a quarter of float32), ``thetas`` (N, P)
+float32, ``indices`` (the sample indices k), and what makes it current: the SHA-256 of the
+graph's ``.sbs``, its ``.json`` and the engine's render revision (``graph_hash``), the
+descriptor kind and the file's ``format``; and the render size and seed. ``load_bank`` returns
+the descriptors decoded, as ``descriptors`` (N, D) float32.
 
 This module also holds what the bank and the predictor's training share: the models folder,
 the staleness hash, parameter vectors of samples and rendering + describing them.
@@ -43,6 +47,7 @@ from .descriptor import DESCRIPTOR_KIND, DESCRIPTOR_SIZE, compact_descriptor, de
 BANK_SIZE = 64
 BANK_SEED = 0
 BANK_SUFFIX = ".bank.pt"
+BANK_FORMAT = 2  # raised when the file's layout changes: older files are stale
 
 
 def models_dir(path, name: str) -> Path:
@@ -137,18 +142,31 @@ def build_bank(name: str, n: int = BANK_SIZE, size: int = DESCRIPTOR_SIZE, seed:
     return write_bank(name, thetas, torch.cat(descriptors), list(range(n)), size, seed, directory)
 
 
+def bank_path(name: str, directory=None) -> Path:
+    return models_dir(directory, name) / f"{name}{BANK_SUFFIX}"
+
+
 def write_bank(name: str, thetas: torch.Tensor, descriptors: torch.Tensor, indices: list[int], size: int,
                seed: int, directory=None) -> Path:
-    path = models_dir(directory, name) / f"{name}{BANK_SUFFIX}"
+    path = bank_path(name, directory)
+    descriptors = descriptors.float().cpu()
+    low = descriptors.min(0).values
+    step = ((descriptors.max(0).values - low) / 255).clamp_min(1e-6)
+    codes = ((descriptors - low) / step).round().clamp(0, 255).to(torch.uint8)
     save_torch({"graph": name, "graph_sha256": graph_hash(name), "descriptor": DESCRIPTOR_KIND,
-                "size": int(size), "seed": int(seed), "indices": torch.tensor(indices, dtype=torch.int64),
-                "thetas": thetas.float().cpu(), "descriptors": descriptors.half().cpu()}, path)
+                "format": BANK_FORMAT, "size": int(size), "seed": int(seed),
+                "indices": torch.tensor(indices, dtype=torch.int64), "thetas": thetas.float().cpu(),
+                "codes": codes, "low": low, "step": step}, path)
     return path
 
 
 def load_bank(name: str, directory=None) -> dict | None:
-    """A graph's bank (None when it has none)."""
-    return load_torch(models_dir(directory, name) / f"{name}{BANK_SUFFIX}")
+    """A graph's bank, its descriptors decoded (None when it has none, or one of an older format)."""
+    bank = load_torch(bank_path(name, directory))
+    if bank is None or bank.get("format") != BANK_FORMAT:
+        return None
+    bank["descriptors"] = bank["codes"].float() * bank["step"] + bank["low"]
+    return bank
 
 
 def current_bank(name: str, directory=None) -> dict | None:

@@ -1,6 +1,8 @@
 """Ranking the library graphs for a photo (the MATch paper, section 4.2).
 
-``rank_graphs(photo)``: for every library graph with a current model, a candidate parameter
+``rank_graphs(photo)``: the selection index (``selection.index``) first lets through the
+``SHORTLIST`` graphs whose bank samples come nearest the photo's compact descriptor, so that the
+cost below grows with the shortlist, not with the library. For each of them, a candidate parameter
 vector (the predictor's, the bank's nearest sample's, or both, keeping the better) is rendered at
 128 px and scored by the fit's own style loss (Gram descriptor at 128) against the photo; the
 graphs come best first, by that distance alone. Simplicity decides only the final choice among
@@ -22,11 +24,13 @@ from ..errors import BlenderMatchError, Cancelled, OptionError
 from ..library import MODELS_DIR, library_entry, library_names, load_library_graph, user_library_dir
 from .bank import bank_is_current, current_bank, nearest
 from .descriptor import DESCRIPTOR_SIZE, compact_descriptor, shared_vgg
+from .index import selection_index
 from .predictor import load_predictor, predictor_is_current
 
 METHODS = ("predictor", "bank", "both")
 RANK_SIZE = 128
 TIE_TOLERANCE = 0.02
+SHORTLIST = 8  # graphs the selection index lets through to be rendered (see docs/benchmarks.md)
 NO_MODELS = ("automatic graph selection needs the selection models (parameter predictors or sample banks) "
              "and none were found in {where}; create them with `blender-match train --all`")
 
@@ -113,13 +117,17 @@ def load_material(name: str, device, materials: dict | None = None):
 
 
 def rank_graphs(photo: torch.Tensor, method: str = "both", *, seed: int = 0, device="cpu", directory=None,
-                graphs=None, progress=None, cancel=None, materials: dict | None = None) -> list[dict]:
-    """Every library graph with a model, best first: {"graph", "distance" (style loss at 128 px of
-    the proposed parameters' render), "theta" (normalised (P,)), "start" ("predicted" | "bank"),
-    "nodes", "params"}. ``photo``: (1, 3, H, W) sRGB in [0, 1] (moved to ``device`` once);
-    ``graphs`` limits the names; ``materials`` caches loaded graphs by name (filled as graphs are
-    loaded; they are only evaluated with explicit parameters here, so their own are unchanged).
-    ``progress`` gets {"graph", "graph_index", "graph_count"}; ``cancel()`` raises Cancelled."""
+                graphs=None, shortlist: int | None = SHORTLIST, progress=None, cancel=None,
+                materials: dict | None = None) -> list[dict]:
+    """The library graphs with a model that come nearest the photo, best first: {"graph",
+    "distance" (style loss at 128 px of the proposed parameters' render), "theta" (normalised
+    (P,)), "start" ("predicted" | "bank"), "nodes", "params"}. With banks (``method`` "bank" or
+    "both"), only the ``shortlist`` graphs the selection index puts nearest (and any graph with
+    a predictor but no bank) are rendered and returned; ``shortlist=None`` renders them all.
+    ``photo``: (1, 3, H, W) sRGB in [0, 1] (moved to ``device`` once); ``graphs`` limits the
+    names; ``materials`` caches loaded graphs by name (filled as graphs are loaded; they are only
+    evaluated with explicit parameters here, so their own are unchanged). ``progress`` gets
+    {"graph", "graph_index", "graph_count"}; ``cancel()`` raises Cancelled."""
     photo = check_photo(photo).to(device)
     names = available_models(method, directory)
     if graphs is not None:
@@ -133,6 +141,10 @@ def rank_graphs(photo: torch.Tensor, method: str = "both", *, seed: int = 0, dev
     with torch.no_grad():
         descriptor = compact_descriptor(vgg, photo, DESCRIPTOR_SIZE)
         target = gram(resize_square(photo, RANK_SIZE), (RANK_SIZE,))
+    if method != "predictor" and shortlist is not None and len(names) > shortlist:
+        index = selection_index(names, directory)
+        near = [e["graph"] for e in index.nearest_graphs(descriptor, shortlist)]
+        names = near + [n for n in names if n not in index.names]
     entries = []
     for index, name in enumerate(names):
         if cancel is not None and cancel():

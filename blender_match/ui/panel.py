@@ -24,6 +24,7 @@ def draw_photo_settings(layout, settings):
 
 def draw_match_settings(layout, settings):
     col = layout.column()
+    col.prop(settings, "graph_family", text="Family")
     col.template_icon_view(settings, "graph", show_labels=True, scale=5.0, scale_popup=4.0)
     col.prop(settings, "graph", text="Graph")
     col.prop(settings, "quality")

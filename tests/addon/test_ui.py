@@ -151,6 +151,12 @@ SESSION = textwrap.dedent(r"""
     settings.photo_path = PHOTO
     items = properties.graph_items(settings, bpy.context)
     out["graph_items"] = [[i[0], i[1], isinstance(i[3], (int, str)), i[4]] for i in items]
+    out["families"] = [i[0] for i in properties.family_items(settings, bpy.context)]
+    settings.graph = "plaster"
+    settings.graph_family = "wood"
+    out["wood_items"] = [[i[0], i[4]] for i in properties.graph_items(settings, bpy.context)]
+    out["graph_outside_family"] = settings.graph
+    settings.graph_family = "ALL"
     settings.graph = "plaster"
     settings.quality = "draft"
     settings.size = "1K"
@@ -289,6 +295,13 @@ def test_settings_and_graph_menu(session):
     names = sorted(p.stem for p in GRAPHS.glob("*.json"))
     assert [i[0] for i in items[1:]] == names and all(i[2] for i in items)
     assert [i[3] for i in items] == list(range(len(items)))
+    # the family menu: all, then the families that have graphs, in catalog order
+    assert session["families"][0] == "ALL" and {"wood", "metal", "stone", "fabric"} <= set(session["families"])
+    numbers = {i[0]: i[3] for i in items}
+    wood = session["wood_items"]
+    assert wood[0] == ["AUTO", 0] and {"raw_wood", "wood_planks"} <= {n for n, _ in wood[1:]}
+    assert "plaster" not in {n for n, _ in wood} and all(numbers[n] == k for n, k in wood)
+    assert session["graph_outside_family"] == "AUTO"  # plaster is not a wood: back to Automatic
     # loaded as a plain module, not an extension: the backend lives under the user's scripts
     assert session["backend_dir"].endswith("scripts/blender_match_backend")
 

@@ -65,6 +65,7 @@ def test_the_added_graph_has_its_thumbnail_bank_and_listing(in_library, capsys):
     assert main(["library", "list", "--json"]) == 0
     listed = {e["name"]: e for e in json.loads(capsys.readouterr().out)}
     assert listed[USER_GRAPH]["library"] == "user" and listed["plaster"]["library"] == "built-in"
+    assert listed[USER_GRAPH]["family"] is None and listed["plaster"]["family"] == "plaster"
 
 
 def test_automatic_ranking_picks_the_user_graph_on_a_render_of_itself(in_library):

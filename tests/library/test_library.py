@@ -170,13 +170,26 @@ def test_cli_render_sample_writes_params_that_render_back(tmp_path, capsys):
 def test_cli_library_sheet(tmp_path, capsys):
     from PIL import Image
 
+    from blender_match.cli.library import COLUMNS
+
     sheet = tmp_path / "sheet.png"
     assert main(["library", "--sheet", str(sheet), "--size", "32"]) == 0
     img = Image.open(sheet)
     n = len(library_names())
-    cols = min(4, n)
+    cols = min(COLUMNS, n)
     assert img.size == (cols * 32, math.ceil(n / cols) * (32 + 18))
     capsys.readouterr()
     assert main(["library", "--sheet", str(sheet), "--size", "32"]) == 2
     assert "already exists" in capsys.readouterr().err
     assert main(["library", "--sheet", str(sheet), "--size", "32", "--overwrite"]) == 0
+
+
+def test_graphs_grouped_by_family_in_catalogue_order():
+    from blender_match.library.catalog import FAMILIES, by_family, family_of
+
+    names = by_family(library_names())
+    assert sorted(names) == sorted(library_names())
+    order = list(FAMILIES)
+    places = [order.index(family_of(library_entry(n))) for n in names]
+    assert places == sorted(places) and len(set(places)) >= 5
+    assert family_of({"family": "wood", "library": "user"}) is None and family_of({"family": "nope"}) is None

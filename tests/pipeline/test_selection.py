@@ -17,6 +17,7 @@ from blender_match.selection.bank import (
     nearest,
     render_images,
 )
+from blender_match.selection.index import selection_index
 from blender_match.selection.descriptor import DESCRIPTOR_DIM, compact_descriptor, descriptor_distance, shared_vgg
 from blender_match.selection.predictor import (
     ParamPredictor,
@@ -61,7 +62,9 @@ def test_compact_descriptor_shape_and_determinism():
 def test_bank_nearest_neighbour_finds_the_sample_itself(tmp_path):
     path = build_bank("plaster", n=3, size=64, directory=tmp_path)
     assert path == tmp_path / "plaster.bank.pt"
-    bank = torch.load(path, weights_only=True)
+    stored = torch.load(path, weights_only=True)
+    assert stored["codes"].dtype == torch.uint8 and stored["codes"].shape == (3, DESCRIPTOR_DIM)
+    bank = load_bank("plaster", tmp_path)
     assert bank["descriptors"].shape == (3, DESCRIPTOR_DIM) and bank["thetas"].shape[0] == 3
     assert bank_is_current("plaster", tmp_path) and load_bank("marble", tmp_path) is None
     space = SampleSpace("plaster")
@@ -74,6 +77,25 @@ def test_bank_nearest_neighbour_finds_the_sample_itself(tmp_path):
     assert torch.equal(hits[0]["theta"], bank["thetas"][1])
 
 
+def test_the_selection_index_shortlists_the_graph_a_photo_comes_from(tmp_path):
+    names = ["plaster", "marble", "bricks"]
+    for name in names:
+        build_bank(name, n=3, directory=tmp_path)
+    index = selection_index(names, tmp_path)
+    assert index.names == names and index.descriptors.shape == (9, DESCRIPTOR_DIM)
+    assert selection_index(names, tmp_path) is index  # one index per process while nothing changes
+    space = SampleSpace("marble")
+    photo = render_images(space.graph, space.vector(2)[None], 0, 128)
+    near = index.nearest_graphs(describe(photo))
+    assert [e["graph"] for e in near][0] == "marble" and len(near) == 3
+    assert near[0]["distance"] < near[1]["distance"] and torch.equal(near[0]["theta"], space.vector(2))
+    build_bank("bricks", n=2, directory=tmp_path)  # a rebuilt bank makes a new index
+    assert selection_index(names, tmp_path).descriptors.shape == (8, DESCRIPTOR_DIM)
+    ranking = rank_graphs(photo, "bank", directory=tmp_path, shortlist=1)
+    assert [e["graph"] for e in ranking] == ["marble"]  # only the shortlisted graph is rendered
+    assert {e["graph"] for e in rank_graphs(photo, "bank", directory=tmp_path, shortlist=None)} == set(names)
+
+
 def test_predictor_forward_range_and_weights_only_round_trip(tmp_path):
     torch.manual_seed(0)
     model = ParamPredictor(DESCRIPTOR_DIM, 7, hidden=16).eval()
@@ -84,10 +106,12 @@ def test_predictor_forward_range_and_weights_only_round_trip(tmp_path):
         y = model(x)
     assert y.shape == (5, 7) and (y >= 0).all() and (y <= 1).all()
     assert torch.equal(y[:, 2], torch.full((5,), model.default[2].item()))
-    meta = {"graph": "plaster", "descriptor_dim": DESCRIPTOR_DIM, "params": 7, "hidden": 16, "layers": 2}
+    meta = {"graph": "plaster", "descriptor_dim": DESCRIPTOR_DIM, "params": 7, "hidden": 16, "layers": 2,
+            "sketch": model.sketch}
     save_predictor(model, "plaster", meta, tmp_path)
     state = torch.load(tmp_path / "plaster.predictor.pt", weights_only=True)
-    assert state["net.0.weight"].dtype == torch.float16
+    assert state["net.0.weight"].dtype == torch.float16 and "bucket" not in state  # the sketch is not stored
+    assert state["net.0.weight"].shape[1] == model.sketch < DESCRIPTOR_DIM
     loaded = load_predictor("plaster", tmp_path)
     with torch.no_grad():
         assert torch.allclose(loaded(x), y, atol=2e-3)
@@ -148,7 +172,7 @@ def test_the_library_is_trained_and_indexed():
 def test_the_shipped_banks_describe_what_the_engine_renders_now(name):
     """A node change that moves a library graph's look leaves its models describing renders the
     engine no longer draws, with no file hash to notice: re-rendering a bank's first samples must
-    give their stored descriptors back (stored as float16: about 2e-4 apart; another sample of the
+    give their stored descriptors back (stored in 8 bits: about 2e-3 apart; another sample of the
     same graph is about 0.5 away)."""
     bank = load_bank(name)
     images = render_images(load_library_graph(name), bank["thetas"][:2], bank["seed"], bank["size"])
