@@ -16,6 +16,10 @@ file back with the translator (``load_sbs_graph``, mode exposed_plus) and writes
   the translator renames) give some; the others get the authored value +- 15% of the parameter's
   full range, clamped to it (except a blend's ``maskrectangle``, kept at its authored value
   unless listed: a sampled crop rectangle cuts a non-tiling hole in a layer);
+- ``sample_together``: the vector parameters given that default spread (colours the source did not
+  list): their components are drawn with one shared fraction of their ranges, so a grey stays grey
+  in every variant instead of taking a random tint (a listed range is drawn per component: an
+  author who lists one means the components to vary apart, as a dye of any hue does);
 - ``node_names``: source node name -> translated node name.
 
 It refuses a source whose round trip is not exact in structure (the translated graph must be the
@@ -84,9 +88,10 @@ def _real(t) -> list[float]:
 
 
 def sample_ranges(translated, mapping: dict[str, str], declared: dict, name: str) -> dict:
-    """Ranges of every optimisable parameter of the translated graph (see the module doc)."""
+    """``{"sample_ranges", "sample_together"}`` of the translated graph's optimisable parameters
+    (see the module doc)."""
     out: dict[str, list] = {}
-    slots = {}
+    slots, listed = {}, set()
     exposed_values = translated.exposed.values()
     for n, p, k in translated.param_slots():
         if n == "exposed":
@@ -122,7 +127,9 @@ def sample_ranges(translated, mapping: dict[str, str], declared: dict, name: str
         los = [max(plo, a) for a in los]
         his = [min(phi, b) for b in his]
         out[tkey] = [los[0], his[0]] if k == 1 else [los, his]
-    return {k: _rounded(v) for k, v in sorted(out.items())}
+        listed.add(tkey)
+    together = sorted(key for key, (value, _, _) in slots.items() if len(value) > 1 and key not in listed)
+    return {"sample_ranges": {k: _rounded(v) for k, v in sorted(out.items())}, "sample_together": together}
 
 
 def _rounded(rng):
@@ -178,7 +185,7 @@ def build_one(name: str) -> tuple[str, str]:
                            f"({report['unsupported']})")
     mapping = match_nodes(graph, translated)
     meta = {"name": name, "file": f"{name}.sbs", "description": description, "family": family, **graph_summary(translated),
-            "sample_ranges": sample_ranges(translated, mapping, declared, name),
+            **sample_ranges(translated, mapping, declared, name),
             "node_names": dict(sorted(mapping.items()))}
     return text, json.dumps(meta, indent=1) + "\n"
 

@@ -161,18 +161,23 @@ def thumbnail_file(name: str) -> Path:
     return library_root(name) / "graphs" / f"{name}.png"
 
 
-def _draw(rng: random.Random, lo, hi):
+def _draw(rng: random.Random, lo, hi, together: bool = False):
     if isinstance(lo, list):
+        if together:
+            t = rng.random()
+            return [round(a + t * (b - a), 6) for a, b in zip(lo, hi)]
         return [round(rng.uniform(a, b), 6) for a, b in zip(lo, hi)]
     return round(rng.uniform(lo, hi), 6)
 
 
 def sample_params(name: str, k: int) -> dict:
     """The k-th random variant of a library graph: every optimisable parameter drawn uniformly in
-    its declared range, seeded by (name, k); ``{"node.param": value or [values]}`` (exposed
+    its declared range (the components of a ``sample_together`` vector with one shared fraction of
+    their ranges), seeded by (name, k); ``{"node.param": value or [values]}`` (exposed
     parameters as ``exposed.NAME``), as the "params" of a parameter file."""
     entry = library_entry(name)
     if isinstance(k, bool) or not isinstance(k, int) or k < 0:
         raise LibraryError(f"{name}: sample index must be a non-negative integer, got {k!r}")
     rng = random.Random(f"{name}/{k}")
-    return {key: _draw(rng, lo, hi) for key, (lo, hi) in sorted(entry["sample_ranges"].items())}
+    together = set(entry.get("sample_together", ()))
+    return {key: _draw(rng, lo, hi, key in together) for key, (lo, hi) in sorted(entry["sample_ranges"].items())}

@@ -113,7 +113,7 @@ def add_entry(sbs, name: str | None = None, graph_name: str | None = None, overw
     meta = {"name": name, "file": f"{name}/{sbs.name}", "description": f"{report['graph']} from {sbs.name}",
             "graph": report["graph"], "origin": str(sbs), "sha256": file_sha256(sbs),
             "nodes_passthrough": report["nodes_passthrough"], **graph_summary(graph),
-            "sample_ranges": sample_ranges(graph, {}, {}, name)}
+            **sample_ranges(graph, {}, {}, name)}
     graphs = user_library_dir() / "graphs"
     graphs.mkdir(parents=True, exist_ok=True)
     with tempfile.TemporaryDirectory(dir=graphs, prefix=f".adding-{name}-") as tmp:

@@ -193,3 +193,17 @@ def test_graphs_grouped_by_family_in_catalogue_order():
     places = [order.index(family_of(library_entry(n))) for n in names]
     assert places == sorted(places) and len(set(places)) >= 5
     assert family_of({"family": "wood", "library": "user"}) is None and family_of({"family": "nope"}) is None
+
+
+def test_unlisted_colours_keep_their_hue_in_every_variant():
+    """A colour the source did not list moves as a whole (one fraction of its range for every
+    component): a grey stays grey instead of taking a random tint."""
+    entry = library_entry("plaster")
+    together = entry["sample_together"]
+    assert together and set(together) <= set(entry["sample_ranges"])
+    for k in range(4):
+        variant = sample_params(entry["name"], k)
+        for key in together:
+            lo, hi = entry["sample_ranges"][key]
+            fractions = {round((v - a) / (b - a), 4) for v, a, b in zip(variant[key], lo, hi) if b - a > 1e-3}
+            assert len(fractions) <= 1, (key, variant[key])
