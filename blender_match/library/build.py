@@ -14,7 +14,7 @@ file back with the translator (``load_sbs_graph``, mode exposed_plus) and writes
   parameter names of the translated graph (``exposed.NAME`` for exposed ones); a vector parameter
   has per-component lists. The source's ``SAMPLE_RANGES`` (keyed by the source's node names, which
   the translator renames) give some; the others get the authored value +- 15% of the parameter's
-  full range, clamped to it (except a blend's ``maskrectangle``, kept at its authored value
+  full range, at most +- (half the value + 1% of the range) (``default_spread``), clamped to it (except a blend's ``maskrectangle``, kept at its authored value
   unless listed: a sampled crop rectangle cuts a non-tiling hole in a layer);
 - ``sample_together``: the vector parameters given that default spread (colours the source did not
   list): their components are drawn with one shared fraction of their ranges, so a grey stays grey
@@ -100,9 +100,9 @@ def sample_ranges(translated, mapping: dict[str, str], declared: dict, name: str
             value, (lo, hi) = _real(translated.nodes[n].values()[p]), translated.nodes[n].ranges[p]
         slots[f"{n}.{p}"] = (value, lo, hi)
         fixed = n != "exposed" and (translated.nodes[n].spec.name, p) in FIXED_BY_DEFAULT
-        d = 0.0 if fixed else DEFAULT_SPREAD * (hi - lo)
-        los = [max(lo, v - d) for v in value]
-        his = [min(hi, v + d) for v in value]
+        spreads = [0.0 if fixed else default_spread(v, lo, hi) for v in value]
+        los = [max(lo, v - d) for v, d in zip(value, spreads)]
+        his = [min(hi, v + d) for v, d in zip(value, spreads)]
         out[f"{n}.{p}"] = [los[0], his[0]] if len(value) == 1 else [los, his]
     for key, rng in declared.items():
         node, _, param = key.partition(".")
@@ -130,6 +130,14 @@ def sample_ranges(translated, mapping: dict[str, str], declared: dict, name: str
         listed.add(tkey)
     together = sorted(key for key, (value, _, _) in slots.items() if len(value) > 1 and key not in listed)
     return {"sample_ranges": {k: _rounded(v) for k, v in sorted(out.items())}, "sample_together": together}
+
+
+def default_spread(value: float, lo: float, hi: float) -> float:
+    """How far an unlisted parameter is sampled either side of its authored value: 15% of its range,
+    but no more than half the value's size plus 1% of the range, so that a value small on a wide
+    scale (a warp of 0.04 out of 0-20, a rotation of 0) varies around itself instead of by several
+    times itself (up to 3.0 for that warp, which destroys the pattern it shapes)."""
+    return min(DEFAULT_SPREAD * (hi - lo), 0.5 * abs(value) + 0.01 * (hi - lo))
 
 
 def _rounded(rng):

@@ -9,8 +9,9 @@ Its selection models go to the library's ``models/`` (built by the pipeline, whi
 
 ``add_entry`` refuses, with a one-line ``LibraryError`` naming the file, what cannot be rendered: a
 file the translator cannot read, a dependency outside the file's folder, a graph whose render is
-not finite. Parameters are sampled for the bank in the authored value +- 15% of each parameter's
-range (``build.DEFAULT_SPREAD``), as for a shipped graph without declared ranges.
+not finite. Parameters are sampled for the bank around the authored value (``build.default_spread``:
+15% of each parameter's range, less for a value small on its scale), as for a shipped graph
+without declared ranges.
 """
 from __future__ import annotations
 

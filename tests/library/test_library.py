@@ -207,3 +207,11 @@ def test_unlisted_colours_keep_their_hue_in_every_variant():
             lo, hi = entry["sample_ranges"][key]
             fractions = {round((v - a) / (b - a), 4) for v, a, b in zip(variant[key], lo, hi) if b - a > 1e-3}
             assert len(fractions) <= 1, (key, variant[key])
+
+
+def test_unlisted_parameters_vary_around_their_value():
+    from blender_match.library.build import default_spread
+
+    assert default_spread(0.5, 0.0, 1.0) == pytest.approx(0.15)  # mid-range: 15% of the range
+    assert default_spread(0.04, 0.0, 20.0) == pytest.approx(0.22)  # a small warp stays small (not +-3)
+    assert default_spread(0.0, -1.0, 1.0) == pytest.approx(0.02)  # a rotation of 0 barely turns
