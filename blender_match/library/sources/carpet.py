@@ -99,7 +99,8 @@ def build() -> SbsGraph:
     g.add("yarn_depth", "blend", {"source": "depth_tones", "destination": "yarn_heather"},
           blendingmode=MULTIPLY, opacitymult=0.5)
     g.bind("yarn_depth", "opacitymult", lerp(0.2, 0.8, get("pile_depth")).graph())
-    g.add("ao_color", "gradient", {"input1": "ao"}, **gradient_keys([(0.0, (0.25, 0.25, 0.25)), (1.0, (1.0, 1.0, 1.0))]))
+    g.add("ao_color", "gradient", {"input1": "ao"},
+          **gradient_keys([(0.0, (0.25, 0.25, 0.25)), (1.0, (1.0, 1.0, 1.0))]))
     g.add("basecolor", "blend", {"source": "ao_color", "destination": "yarn_depth"},
           blendingmode=MULTIPLY, opacitymult=0.5)
 

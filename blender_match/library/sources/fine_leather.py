@@ -98,7 +98,8 @@ def build() -> SbsGraph:
     g.add("tops", "histogram_scan", {"input_1": "height"}, position=0.7, contrast=0.4)
     g.add("dye_tops", "blend", {"source": "top_tone", "destination": "dye_pores", "opacity": "tops"},
           blendingmode=SOFT_LIGHT, opacitymult=0.4)
-    g.add("ao_color", "gradient", {"input1": "ao"}, **gradient_keys([(0.0, (0.35, 0.35, 0.35)), (1.0, (1.0, 1.0, 1.0))]))
+    g.add("ao_color", "gradient", {"input1": "ao"},
+          **gradient_keys([(0.0, (0.35, 0.35, 0.35)), (1.0, (1.0, 1.0, 1.0))]))
     g.add("basecolor", "blend", {"source": "ao_color", "destination": "dye_tops"},
           blendingmode=MULTIPLY, opacitymult=0.3)
 

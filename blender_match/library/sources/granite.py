@@ -40,7 +40,6 @@ from blender_match.library.authoring import (
 from blender_match.library.expressions import get, lerp, vector
 from blender_match.translator.runtime import SbsGraph
 
-
 QUARTZ = [(0.0, (0.5, 0.5, 0.51)), (1.0, (0.8, 0.8, 0.8))]
 FELDSPAR_SHADE = [(0.0, (0.55, 0.55, 0.55)), (0.55, (0.5, 0.5, 0.5)), (1.0, (0.75, 0.75, 0.75))]
 DARK_TONE = [(0.0, (0.03, 0.03, 0.03)), (1.0, (0.13, 0.12, 0.11))]

@@ -7,7 +7,8 @@ Structure
   darker veins along the layer boundaries.
 - Voids: the gas holes of travertine are flattened along the layers. Sparse spots (thresholded
   Gaussian spots) are smeared along the band direction by two directional blurs (a box
-  blur twice: a tapered profile, so the threshold gives pointed lens shapes) and thresholded again, giving lens-shaped pits of a few mm to 2 cm; they are favoured in some layers (multiplied
+  blur twice: a tapered profile, so the threshold gives pointed lens shapes) and thresholded
+  again, giving lens-shaped pits of a few mm to 2 cm; they are favoured in some layers (multiplied
   by a band mask) as in real slabs. A few fine pinholes (thresholded white noise) are added.
 - Height: a flat honed plane; voids sunk deep with soft walls; a very faint band relief.
 - Colour: the exposed stone colour shaded by the bands, veins darker and browner, voids dark

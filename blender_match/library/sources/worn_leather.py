@@ -126,7 +126,8 @@ def build() -> SbsGraph:
     g.add("dye_dark", "blend", {"source": "grime", "destination": "dye_crazed", "opacity": "crease_lines"},
           blendingmode=MULTIPLY, opacitymult=0.6)
     g.bind("dye_dark", "opacitymult", lerp(0.0, 1.0, get("creases")).graph())
-    g.add("ao_color", "gradient", {"input1": "ao"}, **gradient_keys([(0.0, (0.35, 0.35, 0.35)), (1.0, (1.0, 1.0, 1.0))]))
+    g.add("ao_color", "gradient", {"input1": "ao"},
+          **gradient_keys([(0.0, (0.35, 0.35, 0.35)), (1.0, (1.0, 1.0, 1.0))]))
     g.add("basecolor", "blend", {"source": "ao_color", "destination": "dye_dark"},
           blendingmode=MULTIPLY, opacitymult=0.3)
 
