@@ -22,7 +22,7 @@ from ..diffmat.functional.common import check_size
 from ..diffmat.render import render_maps
 from ..errors import BlenderMatchError, OptionError
 from ..library import library_entry, library_names, load_library_graph, user_library_dir
-from ..library.catalog import FAMILIES, USER_LIBRARY_ENV, by_family, family_of
+from ..library.catalog import USER_LIBRARY_ENV, by_family, family_of
 from ..library.user import remove_entry
 from ..pipeline import resolve_device
 from ..pipeline.user_library import add_sbs, sbs_files
@@ -73,8 +73,8 @@ def entries() -> list[dict]:
 
 
 def contact_sheet(names: list[str], size: int = 256, seed: int = 0):
-    """A PIL image: each graph rendered under the flash, its name (and family) below, in rows of
-    COLUMNS, in the order given."""
+    """A PIL image: each graph rendered under the flash, its name below, in rows of COLUMNS, in the
+    order given (the command groups them by family)."""
 
     cols = min(COLUMNS, max(1, len(names)))
     rows = max(1, math.ceil(len(names) / cols))
@@ -88,8 +88,7 @@ def contact_sheet(names: list[str], size: int = 256, seed: int = 0):
         arr = (img.clamp(0, 1).permute(1, 2, 0).numpy() * 255 + 0.5).astype(np.uint8)
         x, y = (i % cols) * size, (i // cols) * (size + LABEL_HEIGHT)
         sheet.paste(Image.fromarray(arr), (x, y))
-        family = FAMILIES.get(family_of(library_entry(name)), "user")
-        draw.text((x + 4, y + size + 3), f"{name} ({family})", fill=(235, 235, 235), font=font)
+        draw.text((x + 4, y + size + 3), name, fill=(235, 235, 235), font=font)
     return sheet
 
 
@@ -98,8 +97,8 @@ def run(args) -> int:
         listed = entries()
         width = max((len(e["name"]) for e in listed), default=0) + 2
         for e in listed:
-            print(f"{e['name']:<{width}}{e['library']:<10}{e['family'] or '-':<9}nodes {e['nodes']:>4}  params {e['params_optimizable']:>4}  "
-                  f"exposed {', '.join(e['exposed'])}")
+            print(f"{e['name']:<{width}}{e['library']:<10}{e['family'] or '-':<9}nodes {e['nodes']:>4}  "
+                  f"params {e['params_optimizable']:>4}  exposed {', '.join(e['exposed'])}")
         return 0
     if args.json:
         print(json.dumps(entries(), indent=1))

@@ -14,8 +14,9 @@ file back with the translator (``load_sbs_graph``, mode exposed_plus) and writes
   parameter names of the translated graph (``exposed.NAME`` for exposed ones); a vector parameter
   has per-component lists. The source's ``SAMPLE_RANGES`` (keyed by the source's node names, which
   the translator renames) give some; the others get the authored value +- 15% of the parameter's
-  full range, at most +- (half the value + 1% of the range) (``default_spread``), clamped to it (except a blend's ``maskrectangle``, kept at its authored value
-  unless listed: a sampled crop rectangle cuts a non-tiling hole in a layer);
+  full range, at most +- (half the value + 1% of the range) (``default_spread``), clamped to it
+  (except a blend's ``maskrectangle``, kept at its authored value unless listed: a sampled crop
+  rectangle cuts a non-tiling hole in a layer);
 - ``sample_together``: the vector parameters given that default spread (colours the source did not
   list): their components are drawn with one shared fraction of their ranges, so a grey stays grey
   in every variant instead of taking a random tint (a listed range is drawn per component: an
@@ -192,7 +193,8 @@ def build_one(name: str) -> tuple[str, str]:
         raise DiffMatError(f"sources/{name}.py: {report['nodes_passthrough']} node(s) translate as pass-through "
                            f"({report['unsupported']})")
     mapping = match_nodes(graph, translated)
-    meta = {"name": name, "file": f"{name}.sbs", "description": description, "family": family, **graph_summary(translated),
+    meta = {"name": name, "file": f"{name}.sbs", "description": description, "family": family,
+            **graph_summary(translated),
             **sample_ranges(translated, mapping, declared, name),
             "node_names": dict(sorted(mapping.items()))}
     return text, json.dumps(meta, indent=1) + "\n"

@@ -17,8 +17,8 @@ from blender_match.selection.bank import (
     nearest,
     render_images,
 )
-from blender_match.selection.index import selection_index
 from blender_match.selection.descriptor import DESCRIPTOR_DIM, compact_descriptor, descriptor_distance, shared_vgg
+from blender_match.selection.index import selection_index
 from blender_match.selection.predictor import (
     ParamPredictor,
     fit_params,
