@@ -81,5 +81,6 @@ def apply_params(graph, params: dict):
 
 
 __all__ = ["FAMILIES", "GRAPHS_DIR", "LIBRARY_DIR", "MODELS_DIR", "LibraryError", "apply_params", "build_source",
-           "builtin_names", "library_entry", "library_names", "library_path", "load_library_graph", "metadata_file", "models_folder",
-           "sample_params", "source_module", "source_names", "thumbnail_file", "user_library_dir", "user_names"]
+           "builtin_names", "library_entry", "library_names", "library_path", "load_library_graph", "metadata_file",
+           "models_folder", "sample_params", "source_module", "source_names", "thumbnail_file", "user_library_dir",
+           "user_names"]
