@@ -144,7 +144,7 @@ def test_cli_library_json_lists_every_graph(capsys):
     rows = json.loads(capsys.readouterr().out)
     assert [r["name"] for r in rows] == library_names()
     for r in rows:
-        assert set(r) == {"name", "library", "file", "nodes", "params_optimizable", "exposed"}
+        assert set(r) == {"name", "library", "family", "file", "nodes", "params_optimizable", "exposed"}
         assert r["file"].endswith(f"{r['name']}.sbs") and os.path.isfile(r["file"])
 
 
