@@ -37,7 +37,7 @@ from blender_match.library.authoring import (
     gradient_keys,
     set_material_outputs,
 )
-from blender_match.library.expressions import const, get, lerp, vector
+from blender_match.library.expressions import const, get, lerp, minimum, vector
 from blender_match.translator.runtime import SbsGraph
 
 # pebble tones, multiplied onto the stone colour (1 keeps it): every pebble a different rock
@@ -76,7 +76,9 @@ def build() -> SbsGraph:
     g.add("peb_s", "tile_sampler", pattern=3, luminance_random=0.3, **small)
     g.add("id_s", "tile_sampler", pattern=2, luminance_random=1.0, **small)
     for node, lo, hi in (("peb_l", 1.3, 2.3), ("id_l", 1.3, 2.3), ("peb_s", 1.5, 2.4), ("id_s", 1.5, 2.4)):
-        g.bind(node, "scale", lerp(lo, hi, packing).graph())
+        # capped at the Tile Sampler's scale maximum (2): a bound value above it is clamped by the
+        # engine on the source node but widens the slider of the translated one (exported default)
+        g.bind(node, "scale", minimum(lerp(lo, hi, packing), 2.0).graph())
         # a pebble and its identity twin must keep one layout: pin the layout parameters
         layout = large if node.endswith("_l") else small
         for param in ("position_random", "rotation_random", "scale_random", "size_xy"):
