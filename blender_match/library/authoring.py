@@ -1,5 +1,7 @@
 """Shared vocabulary of the material sources (``library/sources/*.py``): blend-mode names, gradient
-keys, and constant maps pinned so the optimiser cannot move them."""
+keys, constant maps pinned so the optimiser cannot move them, and the node patterns the sources
+repeat (a flat colour or a gradient map blended over a map, the ambient-occlusion darkening, the
+normal and ambient occlusion of a height map)."""
 from __future__ import annotations
 
 from ..translator.runtime import SbsGraph
@@ -31,3 +33,82 @@ def set_material_outputs(g: SbsGraph, ambient_occlusion: str | None = None):
         g.set_output(usage, usage)
     if ambient_occlusion:
         g.set_output("ambientocclusion", ambient_occlusion)
+
+
+def color_over(g: SbsGraph, name: str, color_name: str, color, destination: str, mask: str | None = None,
+               **blend) -> str:
+    """A flat colour (the uniform node ``color_name``, ``outputcolor=color``) blended over
+    ``destination`` through the opacity ``mask`` (None: everywhere) by the blend node ``name``
+    (``blend``: its parameters, e.g. ``blendingmode``, ``opacitymult``)."""
+    g.add(color_name, "uniform", outputcolor=color)
+    inputs = {"source": color_name, "destination": destination}
+    if mask is not None:
+        inputs["opacity"] = mask
+    g.add(name, "blend", inputs, **blend)
+    return name
+
+
+def gradient_over(g: SbsGraph, name: str, tones_name: str, source: str, stops, destination: str,
+                  mask: str | None = None, **blend) -> str:
+    """A gradient map ``tones_name`` of ``source`` (``stops`` as in ``gradient_keys``) blended over
+    ``destination`` through the opacity ``mask`` (None: everywhere) by the blend node ``name``: the
+    mottling of a colour by a noise (usually SOFT_LIGHT)."""
+    g.add(tones_name, "gradient", {"input1": source}, **gradient_keys(stops))
+    inputs = {"source": tones_name, "destination": destination}
+    if mask is not None:
+        inputs["opacity"] = mask
+    g.add(name, "blend", inputs, **blend)
+    return name
+
+
+def ao_darken(g: SbsGraph, name: str, destination: str, floor: float, opacitymult: float,
+              blendingmode: int = MULTIPLY, ao: str = "ao", color_name: str = "ao_color") -> str:
+    """Darken ``destination`` in the crevices: the ambient occlusion ``ao`` mapped to a grey ramp
+    from ``floor`` to white (the gradient node ``color_name``), blended by the node ``name``."""
+    g.add(color_name, "gradient", {"input1": ao},
+          **gradient_keys([(0.0, (floor, floor, floor)), (1.0, (1.0, 1.0, 1.0))]))
+    g.add(name, "blend", {"source": color_name, "destination": destination},
+          blendingmode=blendingmode, opacitymult=opacitymult)
+    return name
+
+
+def normal_and_ao(g: SbsGraph, height: str, intensity: float, height_depth: float, spreading: float,
+                  normal: str = "normal", ao: str = "ao") -> str:
+    """The tail of a height map: the normal node ``normal`` (OpenGL, ``intensity``) and the ambient
+    occlusion node ``ao`` (``height_depth``, ``spreading``), both from ``height``. Returns ``normal``."""
+    g.add(normal, "normal", {"input1": height}, intensity=intensity, inversedy=True)
+    g.add(ao, "ambient_occlusion_2", {"source": height}, height_depth=height_depth, spreading=spreading)
+    return normal
+
+
+def fold(g: SbsGraph, src: str, i: int) -> str:
+    """|2x - 1| of ``src`` from histogram scans (max(0, 2x-1) and max(0, 1-2x), blended by max), as
+    the nodes ``fold{i}_inv``, ``fold{i}_hi``, ``fold{i}_lo`` and ``fold{i}``: each fold doubles the
+    number of periods of a distance field (growth rings)."""
+    g.add(f"fold{i}_inv", "invert_grayscale", {"source": src})
+    g.add(f"fold{i}_hi", "histogram_scan", {"input_1": src}, position=0.25, contrast=0.0)
+    g.add(f"fold{i}_lo", "histogram_scan", {"input_1": f"fold{i}_inv"}, position=0.25, contrast=0.0)
+    g.add(f"fold{i}", "blend", {"source": f"fold{i}_lo", "destination": f"fold{i}_hi"},
+          blendingmode=MAX, opacitymult=1.0)
+    return f"fold{i}"
+
+
+def keys_near(stops, d: float) -> tuple:
+    """A tight (lo, hi) sampling range around a gradient's key colours (each channel +- d, alpha
+    kept at 1), for ``SAMPLE_RANGES``: the sampler draws each channel independently, and a wide
+    range would tint the tones."""
+    lo = [c for _, rgb in stops for c in (*(max(0.0, v - d) for v in rgb), 1.0)]
+    hi = [c for _, rgb in stops for c in (*(min(1.0, v + d) for v in rgb), 1.0)]
+    return lo, hi
+
+
+def rgba_near(rgb, d: float) -> tuple:
+    """A (lo, hi) sampling range around a flat colour (each channel +- d, alpha 1)."""
+    return [max(0.0, v - d) for v in rgb] + [1.0], [min(1.0, v + d) for v in rgb] + [1.0]
+
+
+def pinned_keys(stops) -> dict:
+    """A gradient's keys pinned in ``SAMPLE_RANGES`` (sampling them channel by channel would tint
+    a neutral key): the ranges of its ``positions`` and ``colors``, each (value, value)."""
+    keys = gradient_keys(stops)
+    return {"positions": (keys["positions"], keys["positions"]), "colors": (keys["colors"], keys["colors"])}

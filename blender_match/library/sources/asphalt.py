@@ -20,7 +20,7 @@ Exposed parameters
 """
 from __future__ import annotations
 
-from blender_match.library.authoring import constant_map
+from blender_match.library.authoring import color_over, constant_map
 from blender_match.library.expressions import clamp, get, lerp, vector
 from blender_match.translator.runtime import SbsGraph
 
@@ -79,9 +79,8 @@ def build() -> SbsGraph:
     g.add("binder_tint", "uniform", outputcolor=[0.16, 0.16, 0.16, 1.0])
     g.bind("binder_tint", "outputcolor", vector(get("binder_color", 3), 1.0).graph())
     g.add("dust_mask", "histogram_scan", {"input_1": "dust"}, position=0.5, contrast=0.1)
-    g.add("dust_color", "uniform", outputcolor=[0.42, 0.40, 0.37, 1.0])
-    g.add("binder_dusty", "blend", {"source": "dust_color", "destination": "binder_tint", "opacity": "dust_mask"},
-          blendingmode=0, opacitymult=0.3)
+    color_over(g, "binder_dusty", "dust_color", [0.42, 0.40, 0.37, 1.0], "binder_tint", mask="dust_mask",
+               blendingmode=0, opacitymult=0.3)
     g.bind("binder_dusty", "opacitymult", lerp(0.05, 0.5, wear).graph())
     g.add("col_out", "blend", {"source": "stone_col", "destination": "binder_dusty", "opacity": "stone_mask"},
           blendingmode=0)

@@ -32,8 +32,13 @@ from blender_match.library.authoring import (
     MULTIPLY,
     SOFT_LIGHT,
     SUBTRACT,
+    ao_darken,
+    color_over,
     constant_map,
-    gradient_keys,
+    gradient_over,
+    keys_near,
+    normal_and_ao,
+    rgba_near,
     set_material_outputs,
 )
 from blender_match.library.expressions import get, lerp, vector
@@ -45,18 +50,6 @@ DEPTH_TONES = [(0.0, (0.18, 0.15, 0.13)), (0.25, (0.52, 0.49, 0.46)), (0.55, (0.
 CLOUD_TONES = [(0.0, (0.42, 0.42, 0.42)), (1.0, (0.58, 0.57, 0.55))]
 WEATHER_COLOR = (0.62, 0.60, 0.57)
 LICHEN_COLOR = (0.45, 0.50, 0.38)
-
-
-def _keys_near(stops, d):
-    """A tight (lo, hi) sampling range around a gradient's key colours (alpha kept at 1): the
-    sampler draws each channel independently, and a wide range would tint the tones."""
-    lo = [c for _, rgb in stops for c in (*(max(0.0, v - d) for v in rgb), 1.0)]
-    hi = [c for _, rgb in stops for c in (*(min(1.0, v + d) for v in rgb), 1.0)]
-    return lo, hi
-
-
-def _rgba_near(rgb, d):
-    return [max(0.0, v - d) for v in rgb] + [1.0], [min(1.0, v + d) for v in rgb] + [1.0]
 
 
 def build() -> SbsGraph:
@@ -97,34 +90,26 @@ def build() -> SbsGraph:
     g.add("h_fibres", "blend", {"source": "fibre_src", "destination": "h_flakes"},
           blendingmode=ADD_SUB, opacitymult=0.06)
     g.add("height", "histogram_range", {"input": "h_fibres"}, range=1.0, position=0.5)
-    g.add("normal", "normal", {"input1": "height"}, intensity=8.0, inversedy=True)
-    g.add("ao", "ambient_occlusion_2", {"source": "height"}, height_depth=0.3, spreading=0.15)
+    normal_and_ao(g, "height", intensity=8.0, height_depth=0.3, spreading=0.15)
 
     # ---- colour ------------------------------------------------------------------------------
     g.add("bark_base", "uniform", outputcolor=(0.44, 0.37, 0.29, 1.0))
     g.bind("bark_base", "outputcolor", vector(get("bark_color", 3), 1.0).graph())
     g.add("clouds", "clouds_2", seed=107, scale=3.0)
-    g.add("cloud_tones", "gradient", {"input1": "clouds"}, **gradient_keys(CLOUD_TONES))
-    g.add("clouded", "blend", {"source": "cloud_tones", "destination": "bark_base"},
-          blendingmode=SOFT_LIGHT, opacitymult=0.7)
+    gradient_over(g, "clouded", "cloud_tones", "clouds", CLOUD_TONES, "bark_base", blendingmode=SOFT_LIGHT,
+                  opacitymult=0.7)
     g.add("tops", "histogram_scan", {"input_1": "height"}, position=0.3, contrast=0.4)
-    g.add("weather_color", "uniform", outputcolor=(*WEATHER_COLOR, 1.0))
-    g.add("weathered", "blend", {"source": "weather_color", "destination": "clouded", "opacity": "tops"},
-          blendingmode=COPY, opacitymult=0.35)
+    color_over(g, "weathered", "weather_color", (*WEATHER_COLOR, 1.0), "clouded", mask="tops", blendingmode=COPY,
+               opacitymult=0.35)
     g.add("lichen_zone", "histogram_select", {"input": "height"}, position=0.4, range=0.15, contrast=0.3)
     g.add("lichen_mask", "blend", {"source": "crumbs", "destination": "lichen_zone"},
           blendingmode=MULTIPLY, opacitymult=1.0)
-    g.add("lichen_color", "uniform", outputcolor=(*LICHEN_COLOR, 1.0))
-    g.add("lichened", "blend", {"source": "lichen_color", "destination": "weathered", "opacity": "lichen_mask"},
-          blendingmode=COPY, opacitymult=0.3)
+    color_over(g, "lichened", "lichen_color", (*LICHEN_COLOR, 1.0), "weathered", mask="lichen_mask", blendingmode=COPY,
+               opacitymult=0.3)
     g.bind("lichened", "opacitymult", get("lichen").graph())
-    g.add("depth_tones", "gradient", {"input1": "height"}, **gradient_keys(DEPTH_TONES))
-    g.add("deepened", "blend", {"source": "depth_tones", "destination": "lichened"},
-          blendingmode=MULTIPLY, opacitymult=0.85)
-    g.add("ao_color", "gradient", {"input1": "ao"},
-          **gradient_keys([(0.0, (0.2, 0.2, 0.2)), (1.0, (1.0, 1.0, 1.0))]))
-    g.add("basecolor", "blend", {"source": "ao_color", "destination": "deepened"},
-          blendingmode=MULTIPLY, opacitymult=0.5)
+    gradient_over(g, "deepened", "depth_tones", "height", DEPTH_TONES, "lichened", blendingmode=MULTIPLY,
+                  opacitymult=0.85)
+    ao_darken(g, "basecolor", "deepened", floor=0.2, opacitymult=0.5)
 
     # ---- roughness and metallic ---------------------------------------------------------------
     g.add("rough_base", "histogram_range", {"input": "crumbs"}, range=0.12, position=0.88)
@@ -154,8 +139,8 @@ SAMPLE_RANGES = {
     "normal.intensity": (5.0, 12.0),
     "clouded.opacitymult": (0.3, 1.0),
     "weathered.opacitymult": (0.1, 0.5),
-    "depth_tones.colors": _keys_near(DEPTH_TONES, 0.03),
-    "cloud_tones.colors": _keys_near(CLOUD_TONES, 0.03),
-    "weather_color.outputcolor": _rgba_near(WEATHER_COLOR, 0.04),
-    "lichen_color.outputcolor": _rgba_near(LICHEN_COLOR, 0.04),
+    "depth_tones.colors": keys_near(DEPTH_TONES, 0.03),
+    "cloud_tones.colors": keys_near(CLOUD_TONES, 0.03),
+    "weather_color.outputcolor": rgba_near(WEATHER_COLOR, 0.04),
+    "lichen_color.outputcolor": rgba_near(LICHEN_COLOR, 0.04),
 }

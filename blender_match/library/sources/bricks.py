@@ -28,12 +28,12 @@ from blender_match.library.authoring import (
     ADD_SUB,
     COPY,
     MAX,
-    MULTIPLY,
     OVERLAY,
     SOFT_LIGHT,
     SUBTRACT,
+    ao_darken,
     constant_map,
-    gradient_keys,
+    gradient_over,
     set_material_outputs,
 )
 from blender_match.library.expressions import get, lerp, vector
@@ -86,20 +86,15 @@ def build() -> SbsGraph:
     # ---- colour ------------------------------------------------------------------------------
     g.add("brick_base", "uniform", outputcolor=(0.50, 0.23, 0.15, 1.0))
     g.bind("brick_base", "outputcolor", vector(get("brick_color", 3), 1.0).graph())
-    g.add("brick_tones", "gradient", {"input1": "brick_id"}, **gradient_keys([
+    gradient_over(g, "brick_varied", "brick_tones", "brick_id", [
         (0.0, (0.22, 0.19, 0.20)), (0.2, (0.40, 0.34, 0.36)), (0.45, (0.50, 0.47, 0.45)),
-        (0.75, (0.60, 0.52, 0.42)), (1.0, (0.70, 0.58, 0.44))]))
-    g.add("brick_varied", "blend", {"source": "brick_tones", "destination": "brick_base"},
-          blendingmode=SOFT_LIGHT, opacitymult=0.6)
+        (0.75, (0.60, 0.52, 0.42)), (1.0, (0.70, 0.58, 0.44))], "brick_base", blendingmode=SOFT_LIGHT, opacitymult=0.6)
     g.bind("brick_varied", "opacitymult", get("brick_variation").graph())
-    g.add("cloud_tones", "gradient", {"input1": "clouds"}, **gradient_keys([
-        (0.0, (0.40, 0.40, 0.42)), (1.0, (0.60, 0.56, 0.50))]))
-    g.add("brick_clouded", "blend", {"source": "cloud_tones", "destination": "brick_varied"},
-          blendingmode=SOFT_LIGHT, opacitymult=0.7)
-    g.add("speckle_tones", "gradient", {"input1": "sand"}, **gradient_keys([
-        (0.0, (0.30, 0.28, 0.27)), (0.5, (0.5, 0.5, 0.5)), (1.0, (0.62, 0.58, 0.52))]))
-    g.add("brick_speckled", "blend", {"source": "speckle_tones", "destination": "brick_clouded"},
-          blendingmode=OVERLAY, opacitymult=0.35)
+    gradient_over(g, "brick_clouded", "cloud_tones", "clouds", [(0.0, (0.40, 0.40, 0.42)), (1.0, (0.60, 0.56, 0.50))],
+                  "brick_varied", blendingmode=SOFT_LIGHT, opacitymult=0.7)
+    gradient_over(g, "brick_speckled", "speckle_tones", "sand",
+                  [(0.0, (0.30, 0.28, 0.27)), (0.5, (0.5, 0.5, 0.5)), (1.0, (0.62, 0.58, 0.52))], "brick_clouded",
+                  blendingmode=OVERLAY, opacitymult=0.35)
 
     g.add("mortar_base", "uniform", outputcolor=(0.55, 0.53, 0.49, 1.0))
     g.bind("mortar_base", "outputcolor",
@@ -110,10 +105,7 @@ def build() -> SbsGraph:
     g.add("brick_mask", "histogram_scan", {"input_1": "brick_soft"}, position=0.85, contrast=0.6)
     g.add("wall", "blend", {"source": "brick_speckled", "destination": "mortar_speckled",
                             "opacity": "brick_mask"}, blendingmode=COPY, opacitymult=1.0)
-    g.add("ao_color", "gradient", {"input1": "ao"},
-          **gradient_keys([(0.0, (0.15, 0.15, 0.15)), (1.0, (1.0, 1.0, 1.0))]))
-    g.add("basecolor", "blend", {"source": "ao_color", "destination": "wall"},
-          blendingmode=MULTIPLY, opacitymult=0.45)
+    ao_darken(g, "basecolor", "wall", floor=0.15, opacitymult=0.45)
 
     # ---- roughness and metallic ---------------------------------------------------------------
     g.add("rough_brick", "histogram_range", {"input": "sand"}, range=0.1, position=0.82)

@@ -12,7 +12,7 @@ Exposed parameters: ``metal_color`` (sRGB tint), ``roughness``, ``brush_strength
 brushing in colour, roughness and relief), ``scratches`` (scratch visibility), ``smudges``
 (fingerprint amount), ``normal_intensity``.
 """
-from blender_match.library.authoring import constant_map, set_material_outputs
+from blender_match.library.authoring import color_over, constant_map, set_material_outputs
 from blender_match.library.expressions import get, gray4, vector
 from blender_match.translator.runtime import SbsGraph
 
@@ -71,15 +71,12 @@ def build() -> SbsGraph:
     g.add("streak_color", "gradient", {"input1": "streaks"}, positions=[0.0, 0.55, 1.0],
           colors=[0.86, 0.86, 0.87, 1.0, 0.96, 0.96, 0.96, 1.0, 1.0, 1.0, 1.0, 1.0])
     g.add("color_streaked", "blend", {"source": "streak_color", "destination": "tint"}, blendingmode=3)
-    g.add("cloud_tone", "uniform", outputcolor=[0.88, 0.88, 0.9, 1.0])
-    g.add("color_clouds", "blend", {"source": "cloud_tone", "destination": "color_streaked",
-                                    "opacity": "clouds"}, blendingmode=3, opacitymult=0.5)
-    g.add("scratch_bright", "uniform", outputcolor=[0.95, 0.95, 0.96, 1.0])
-    g.add("color_scratched", "blend", {"source": "scratch_bright", "destination": "color_clouds",
-                                       "opacity": "scratch_mask"}, blendingmode=5, opacitymult=0.6)
-    g.add("smudge_color", "uniform", outputcolor=[0.55, 0.54, 0.52, 1.0])
-    g.add("basecolor", "blend", {"source": "smudge_color", "destination": "color_scratched",
-                                 "opacity": "smudge_mask"}, blendingmode=3)
+    color_over(g, "color_clouds", "cloud_tone", [0.88, 0.88, 0.9, 1.0], "color_streaked", mask="clouds", blendingmode=3,
+               opacitymult=0.5)
+    color_over(g, "color_scratched", "scratch_bright", [0.95, 0.95, 0.96, 1.0], "color_clouds", mask="scratch_mask",
+               blendingmode=5, opacitymult=0.6)
+    color_over(g, "basecolor", "smudge_color", [0.55, 0.54, 0.52, 1.0], "color_scratched", mask="smudge_mask",
+               blendingmode=3)
     g.bind("basecolor", "opacitymult", (0.6 * get("smudges")).graph())
 
     # roughness

@@ -31,8 +31,11 @@ from blender_match.library.authoring import (
     MAX,
     MULTIPLY,
     SOFT_LIGHT,
+    ao_darken,
+    color_over,
     constant_map,
-    gradient_keys,
+    gradient_over,
+    normal_and_ao,
     set_material_outputs,
 )
 from blender_match.library.expressions import get, lerp, vector
@@ -71,34 +74,27 @@ def build() -> SbsGraph:
     g.add("lie", "clouds_2", seed=97, scale=2.0)
     g.add("uneven", "blend", {"source": "lie", "destination": "wavy"}, blendingmode=ADD_SUB, opacitymult=0.06)
     g.add("height", "histogram_range", {"input": "uneven"}, range=1.0, position=0.5)
-    g.add("normal", "normal", {"input1": "height"}, intensity=4.0, inversedy=True)
+    normal_and_ao(g, "height", intensity=4.0, height_depth=0.12, spreading=0.05)
     g.bind("normal", "intensity", lerp(1.0, 9.0, get("thread_relief")).graph())
-    g.add("ao", "ambient_occlusion_2", {"source": "height"}, height_depth=0.12, spreading=0.05)
 
     # ---- colour ------------------------------------------------------------------------------
     g.add("base", "uniform", outputcolor=(0.72, 0.62, 0.46, 1.0))
     g.bind("base", "outputcolor", vector(get("canvas_color", 3), 1.0).graph())
     g.add("slub_mix", "blend", {"source": "slub_v", "destination": "slub_h"}, blendingmode=MAX, opacitymult=1.0)
-    g.add("slub_tone", "gradient", {"input1": "slub_mix"}, **gradient_keys([
-        (0.0, (0.44, 0.44, 0.44)), (1.0, (0.58, 0.57, 0.55))]))
-    g.add("slubbed", "blend", {"source": "slub_tone", "destination": "base"}, blendingmode=SOFT_LIGHT, opacitymult=0.6)
-    g.add("cloud_tone", "gradient", {"input1": "lie"}, **gradient_keys([
-        (0.0, (0.45, 0.45, 0.45)), (1.0, (0.55, 0.55, 0.55))]))
-    g.add("clouded", "blend", {"source": "cloud_tone", "destination": "slubbed"},
-          blendingmode=SOFT_LIGHT, opacitymult=0.6)
-    g.add("shade", "gradient", {"input1": "height"}, **gradient_keys([
-        (0.0, (0.25, 0.25, 0.25)), (0.5, (0.80, 0.80, 0.80)), (1.0, (1.0, 1.0, 1.0))]))
-    g.add("shaded", "blend", {"source": "shade", "destination": "clouded"}, blendingmode=MULTIPLY, opacitymult=0.5)
+    gradient_over(g, "slubbed", "slub_tone", "slub_mix", [(0.0, (0.44, 0.44, 0.44)), (1.0, (0.58, 0.57, 0.55))], "base",
+                  blendingmode=SOFT_LIGHT, opacitymult=0.6)
+    gradient_over(g, "clouded", "cloud_tone", "lie", [(0.0, (0.45, 0.45, 0.45)), (1.0, (0.55, 0.55, 0.55))], "slubbed",
+                  blendingmode=SOFT_LIGHT, opacitymult=0.6)
+    gradient_over(g, "shaded", "shade", "height",
+                  [(0.0, (0.25, 0.25, 0.25)), (0.5, (0.80, 0.80, 0.80)), (1.0, (1.0, 1.0, 1.0))], "clouded",
+                  blendingmode=MULTIPLY, opacitymult=0.5)
     g.bind("shaded", "opacitymult", lerp(0.2, 0.85, get("thread_relief")).graph())
     g.add("nep_noise", "bnw_spots_3", seed=98, scale=20.0)
     g.add("neps", "histogram_scan", {"input_1": "nep_noise"}, position=0.06, contrast=0.8)
     g.bind("neps", "position", lerp(0.0, 0.1, get("flecks")).graph())
-    g.add("nep_color", "uniform", outputcolor=(0.22, 0.17, 0.12, 1.0))
-    g.add("flecked", "blend", {"source": "nep_color", "destination": "shaded", "opacity": "neps"},
-          blendingmode=MULTIPLY, opacitymult=0.8)
-    g.add("ao_color", "gradient", {"input1": "ao"}, **gradient_keys([(0.0, (0.3, 0.3, 0.3)), (1.0, (1.0, 1.0, 1.0))]))
-    g.add("basecolor", "blend", {"source": "ao_color", "destination": "flecked"},
-          blendingmode=MULTIPLY, opacitymult=0.4)
+    color_over(g, "flecked", "nep_color", (0.22, 0.17, 0.12, 1.0), "shaded", mask="neps", blendingmode=MULTIPLY,
+               opacitymult=0.8)
+    ao_darken(g, "basecolor", "flecked", floor=0.3, opacitymult=0.4)
 
     # ---- roughness and metallic ---------------------------------------------------------------
     g.add("rough_inv", "invert_grayscale", {"source": "height"})

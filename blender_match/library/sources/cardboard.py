@@ -37,8 +37,10 @@ from blender_match.library.authoring import (
     OVERLAY,
     SOFT_LIGHT,
     SUBTRACT,
+    ao_darken,
+    color_over,
     constant_map,
-    gradient_keys,
+    gradient_over,
     set_material_outputs,
 )
 from blender_match.library.expressions import get, lerp, vector
@@ -106,31 +108,21 @@ def build() -> SbsGraph:
     # ---- colour ------------------------------------------------------------------------------
     g.add("base", "uniform", outputcolor=(0.56, 0.43, 0.30, 1.0))
     g.bind("base", "outputcolor", vector(get("paper_color", 3), 1.0).graph())
-    g.add("formation_tones", "gradient", {"input1": "formation"}, **gradient_keys([
-        (0.0, (0.42, 0.42, 0.42)), (1.0, (0.57, 0.56, 0.55))]))
-    g.add("formed_color", "blend", {"source": "formation_tones", "destination": "base"},
-          blendingmode=SOFT_LIGHT, opacitymult=0.6)
-    g.add("fibre_tones", "gradient", {"input1": "fibres_level"}, **gradient_keys([
-        (0.0, (0.36, 0.35, 0.34)), (1.0, (0.66, 0.65, 0.62))]))
-    g.add("fibred_color", "blend", {"source": "fibre_tones", "destination": "formed_color"},
-          blendingmode=SOFT_LIGHT, opacitymult=0.5)
-    g.add("rib_tones", "gradient", {"input1": "ribs"}, **gradient_keys([
-        (0.0, (0.40, 0.40, 0.40)), (1.0, (0.58, 0.58, 0.57))]))
-    g.add("banded", "blend", {"source": "rib_tones", "destination": "fibred_color"},
-          blendingmode=SOFT_LIGHT, opacitymult=0.4)
+    gradient_over(g, "formed_color", "formation_tones", "formation",
+                  [(0.0, (0.42, 0.42, 0.42)), (1.0, (0.57, 0.56, 0.55))], "base", blendingmode=SOFT_LIGHT,
+                  opacitymult=0.6)
+    gradient_over(g, "fibred_color", "fibre_tones", "fibres_level",
+                  [(0.0, (0.36, 0.35, 0.34)), (1.0, (0.66, 0.65, 0.62))], "formed_color", blendingmode=SOFT_LIGHT,
+                  opacitymult=0.5)
+    gradient_over(g, "banded", "rib_tones", "ribs", [(0.0, (0.40, 0.40, 0.40)), (1.0, (0.58, 0.58, 0.57))],
+                  "fibred_color", blendingmode=SOFT_LIGHT, opacitymult=0.4)
     g.bind("banded", "opacitymult", lerp(0.0, 1.0, get("rib_depth")).graph())
-    g.add("speck_color", "uniform", outputcolor=(0.13, 0.10, 0.08, 1.0))
-    g.add("specked", "blend", {"source": "speck_color", "destination": "banded", "opacity": "speck_mask"},
-          blendingmode=MULTIPLY, opacitymult=0.6)
-    g.add("mark_tones", "gradient", {"input1": "marks_soft"}, **gradient_keys([
-        (0.0, (1.0, 1.0, 1.0)), (1.0, (0.45, 0.42, 0.40))]))
-    g.add("marked", "blend", {"source": "mark_tones", "destination": "specked"},
-          blendingmode=MULTIPLY, opacitymult=0.4)
+    color_over(g, "specked", "speck_color", (0.13, 0.10, 0.08, 1.0), "banded", mask="speck_mask", blendingmode=MULTIPLY,
+               opacitymult=0.6)
+    gradient_over(g, "marked", "mark_tones", "marks_soft", [(0.0, (1.0, 1.0, 1.0)), (1.0, (0.45, 0.42, 0.40))],
+                  "specked", blendingmode=MULTIPLY, opacitymult=0.4)
     g.bind("marked", "opacitymult", lerp(0.0, 0.8, get("creases")).graph())
-    g.add("ao_color", "gradient", {"input1": "ao"},
-          **gradient_keys([(0.0, (0.4, 0.4, 0.4)), (1.0, (1.0, 1.0, 1.0))]))
-    g.add("basecolor", "blend", {"source": "ao_color", "destination": "marked"},
-          blendingmode=MULTIPLY, opacitymult=0.3)
+    ao_darken(g, "basecolor", "marked", floor=0.4, opacitymult=0.3)
 
     # ---- roughness and metallic ---------------------------------------------------------------
     g.add("rough_base", "histogram_range", {"input": "fibres_level"}, range=0.08, position=0.85)

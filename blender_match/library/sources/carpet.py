@@ -31,8 +31,10 @@ from blender_match.library.authoring import (
     MAX,
     MULTIPLY,
     SOFT_LIGHT,
+    ao_darken,
     constant_map,
-    gradient_keys,
+    gradient_over,
+    normal_and_ao,
     set_material_outputs,
 )
 from blender_match.library.expressions import get, lerp, vector
@@ -75,34 +77,26 @@ def build() -> SbsGraph:
     g.add("shaded", "blend", {"source": "shading", "destination": "fuzzed"},
           blendingmode=ADD_SUB, opacitymult=0.12)
     g.add("height", "histogram_range", {"input": "shaded"}, range=1.0, position=0.5)
-    g.add("normal", "normal", {"input1": "height"}, intensity=3.0, inversedy=True)
+    normal_and_ao(g, "height", intensity=3.0, height_depth=0.25, spreading=0.06)
     g.bind("normal", "intensity", lerp(1.0, 6.0, get("pile_depth")).graph())
-    g.add("ao", "ambient_occlusion_2", {"source": "height"}, height_depth=0.25, spreading=0.06)
 
     # ---- colour ------------------------------------------------------------------------------
     g.add("yarn", "uniform", outputcolor=(0.42, 0.36, 0.30, 1.0))
     g.bind("yarn", "outputcolor", vector(get("carpet_color", 3), 1.0).graph())
     g.add("tuft_id", "blend", {"source": "tufts_b", "destination": "tufts_a"},
           blendingmode=ADD_SUB, opacitymult=0.5)
-    g.add("tuft_tones", "gradient", {"input1": "tuft_id"}, **gradient_keys([
-        (0.0, (0.36, 0.36, 0.36)), (0.5, (0.50, 0.50, 0.50)), (1.0, (0.64, 0.63, 0.62))]))
-    g.add("yarn_tufts", "blend", {"source": "tuft_tones", "destination": "yarn"},
-          blendingmode=SOFT_LIGHT, opacitymult=0.5)
+    gradient_over(g, "yarn_tufts", "tuft_tones", "tuft_id",
+                  [(0.0, (0.36, 0.36, 0.36)), (0.5, (0.50, 0.50, 0.50)), (1.0, (0.64, 0.63, 0.62))], "yarn",
+                  blendingmode=SOFT_LIGHT, opacitymult=0.5)
     g.bind("yarn_tufts", "opacitymult", lerp(0.0, 1.0, get("color_variation")).graph())
-    g.add("heather_tones", "gradient", {"input1": "fibres"}, **gradient_keys([
-        (0.0, (0.38, 0.38, 0.38)), (1.0, (0.62, 0.62, 0.62))]))
-    g.add("yarn_heather", "blend", {"source": "heather_tones", "destination": "yarn_tufts"},
-          blendingmode=SOFT_LIGHT, opacitymult=0.4)
+    gradient_over(g, "yarn_heather", "heather_tones", "fibres", [(0.0, (0.38, 0.38, 0.38)), (1.0, (0.62, 0.62, 0.62))],
+                  "yarn_tufts", blendingmode=SOFT_LIGHT, opacitymult=0.4)
     g.bind("yarn_heather", "opacitymult", lerp(0.1, 0.8, get("color_variation")).graph())
-    g.add("depth_tones", "gradient", {"input1": "height"}, **gradient_keys([
-        (0.0, (0.30, 0.30, 0.30)), (0.5, (0.78, 0.78, 0.78)), (1.0, (1.0, 1.0, 1.0))]))
-    g.add("yarn_depth", "blend", {"source": "depth_tones", "destination": "yarn_heather"},
-          blendingmode=MULTIPLY, opacitymult=0.5)
+    gradient_over(g, "yarn_depth", "depth_tones", "height",
+                  [(0.0, (0.30, 0.30, 0.30)), (0.5, (0.78, 0.78, 0.78)), (1.0, (1.0, 1.0, 1.0))], "yarn_heather",
+                  blendingmode=MULTIPLY, opacitymult=0.5)
     g.bind("yarn_depth", "opacitymult", lerp(0.2, 0.8, get("pile_depth")).graph())
-    g.add("ao_color", "gradient", {"input1": "ao"},
-          **gradient_keys([(0.0, (0.25, 0.25, 0.25)), (1.0, (1.0, 1.0, 1.0))]))
-    g.add("basecolor", "blend", {"source": "ao_color", "destination": "yarn_depth"},
-          blendingmode=MULTIPLY, opacitymult=0.5)
+    ao_darken(g, "basecolor", "yarn_depth", floor=0.25, opacitymult=0.5)
 
     # ---- roughness and metallic ---------------------------------------------------------------
     g.add("rough_inv", "invert_grayscale", {"source": "height"})

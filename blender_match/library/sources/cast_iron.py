@@ -32,7 +32,9 @@ from blender_match.library.authoring import (
     MULTIPLY,
     SCREEN,
     SUBTRACT,
-    gradient_keys,
+    color_over,
+    gradient_over,
+    normal_and_ao,
     set_material_outputs,
 )
 from blender_match.library.expressions import get, lerp, vector
@@ -84,8 +86,7 @@ def build() -> SbsGraph:
     g.add("height", "blend", {"source": "pits_soft", "destination": "waved"},
           blendingmode=SUBTRACT, opacitymult=0.45)
     g.bind("height", "opacitymult", lerp(0.1, 0.7, get("pitting")).graph())
-    g.add("normal", "normal", {"input1": "height"}, intensity=2.0, inversedy=True)
-    g.add("ao", "ambient_occlusion_2", {"source": "height"}, height_depth=0.3, spreading=0.08)
+    normal_and_ao(g, "height", intensity=2.0, height_depth=0.3, spreading=0.08)
 
     # ---- masks: rubbed peaks, rust ------------------------------------------------------------------------------
     g.add("peaks", "histogram_scan", {"input_1": "height"}, position=0.25, contrast=0.4)
@@ -104,20 +105,15 @@ def build() -> SbsGraph:
     g.bind("iron", "outputcolor", vector(get("iron_color", 3), 1.0).graph())
     # iron is nearly neutral: keep the colour's lightness, only a hint of its hue
     g.add("iron_luma", "grayscaleconversion", {"input1": "iron"})
-    g.add("iron_gray", "gradient", {"input1": "iron_luma"}, **gradient_keys([
-        (0.0, (0.0, 0.0, 0.0)), (1.0, (1.0, 1.0, 1.0))]))
-    g.add("iron_neutral", "blend", {"source": "iron_gray", "destination": "iron"}, opacitymult=0.75)
-    g.add("hollow_tone", "gradient", {"input1": "height"}, **gradient_keys([
-        (0.0, (0.45, 0.45, 0.45)), (0.5, (0.85, 0.85, 0.85)), (1.0, (1.0, 1.0, 1.0))]))
-    g.add("iron_shaded", "blend", {"source": "hollow_tone", "destination": "iron_neutral"},
-          blendingmode=MULTIPLY)
-    g.add("rub_tone", "uniform", outputcolor=(0.20, 0.20, 0.20, 1.0))
-    g.add("iron_rubbed", "blend", {"source": "rub_tone", "destination": "iron_shaded",
-                                   "opacity": "peaks"}, blendingmode=ADD, opacitymult=0.7)
-    g.add("rust_color", "gradient", {"input1": "rust_clouds"}, **gradient_keys([
-        (0.0, (0.22, 0.10, 0.05)), (1.0, (0.42, 0.20, 0.08))]))
-    g.add("basecolor", "blend", {"source": "rust_color", "destination": "iron_rubbed",
-                                 "opacity": "rust_mask"}, opacitymult=0.85)
+    gradient_over(g, "iron_neutral", "iron_gray", "iron_luma", [(0.0, (0.0, 0.0, 0.0)), (1.0, (1.0, 1.0, 1.0))], "iron",
+                  opacitymult=0.75)
+    gradient_over(g, "iron_shaded", "hollow_tone", "height",
+                  [(0.0, (0.45, 0.45, 0.45)), (0.5, (0.85, 0.85, 0.85)), (1.0, (1.0, 1.0, 1.0))], "iron_neutral",
+                  blendingmode=MULTIPLY)
+    color_over(g, "iron_rubbed", "rub_tone", (0.20, 0.20, 0.20, 1.0), "iron_shaded", mask="peaks", blendingmode=ADD,
+               opacitymult=0.7)
+    gradient_over(g, "basecolor", "rust_color", "rust_clouds", [(0.0, (0.22, 0.10, 0.05)), (1.0, (0.42, 0.20, 0.08))],
+                  "iron_rubbed", mask="rust_mask", opacitymult=0.85)
 
     # ---- roughness and metallic -----------------------------------------------------------------------------------
     g.add("rough_base", "histogram_range", {"input": "hollows"}, range=0.15, position=0.75)

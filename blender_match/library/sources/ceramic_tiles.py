@@ -31,8 +31,10 @@ from blender_match.library.authoring import (
     MULTIPLY,
     OVERLAY,
     SOFT_LIGHT,
+    ao_darken,
+    color_over,
     constant_map,
-    gradient_keys,
+    gradient_over,
     set_material_outputs,
 )
 from blender_match.library.expressions import get, lerp, vector
@@ -82,24 +84,19 @@ def build() -> SbsGraph:
     # ---- colour ------------------------------------------------------------------------------
     g.add("glaze_base", "uniform", outputcolor=(0.78, 0.80, 0.78, 1.0))
     g.bind("glaze_base", "outputcolor", vector(get("tile_color", 3), 1.0).graph())
-    g.add("tile_tones", "gradient", {"input1": "tile_id"}, **gradient_keys([
-        (0.0, (0.44, 0.44, 0.45)), (1.0, (0.57, 0.56, 0.54))]))
-    g.add("glaze_varied", "blend", {"source": "tile_tones", "destination": "glaze_base"},
-          blendingmode=SOFT_LIGHT, opacitymult=0.8)
+    gradient_over(g, "glaze_varied", "tile_tones", "tile_id", [(0.0, (0.44, 0.44, 0.45)), (1.0, (0.57, 0.56, 0.54))],
+                  "glaze_base", blendingmode=SOFT_LIGHT, opacitymult=0.8)
     # glaze pools thicker (darker) along the bevels
-    g.add("bevel_tones", "gradient", {"input1": "tiles_round"}, **gradient_keys([
-        (0.0, (0.55, 0.55, 0.55)), (0.5, (0.72, 0.72, 0.74)), (1.0, (1.0, 1.0, 1.0))]))
-    g.add("glaze_pooled", "blend", {"source": "bevel_tones", "destination": "glaze_varied"},
-          blendingmode=MULTIPLY, opacitymult=0.4)
+    gradient_over(g, "glaze_pooled", "bevel_tones", "tiles_round",
+                  [(0.0, (0.55, 0.55, 0.55)), (0.5, (0.72, 0.72, 0.74)), (1.0, (1.0, 1.0, 1.0))], "glaze_varied",
+                  blendingmode=MULTIPLY, opacitymult=0.4)
 
     g.add("grout_base", "uniform", outputcolor=(0.62, 0.60, 0.56, 1.0))
     g.bind("grout_base", "outputcolor",
            vector(get("grout_brightness"), get("grout_brightness") * 0.97,
                   get("grout_brightness") * 0.9, 1.0).graph())
-    g.add("sand_tones", "gradient", {"input1": "sand"}, **gradient_keys([
-        (0.0, (0.34, 0.34, 0.34)), (1.0, (0.62, 0.61, 0.58))]))
-    g.add("grout_speckled", "blend", {"source": "sand_tones", "destination": "grout_base"},
-          blendingmode=OVERLAY, opacitymult=0.6)
+    gradient_over(g, "grout_speckled", "sand_tones", "sand", [(0.0, (0.34, 0.34, 0.34)), (1.0, (0.62, 0.61, 0.58))],
+                  "grout_base", blendingmode=OVERLAY, opacitymult=0.6)
     g.add("surface", "blend", {"source": "glaze_pooled", "destination": "grout_speckled", "opacity": "tile_mask"},
           blendingmode=COPY, opacitymult=1.0)
 
@@ -110,17 +107,13 @@ def build() -> SbsGraph:
           blendingmode=MULTIPLY, opacitymult=1.0)
     g.add("grime_level", "histogram_scan", {"input_1": "grime_mask"}, position=0.35, contrast=0.1)
     g.bind("grime_level", "position", lerp(0.0, 0.8, get("dirt")).graph())
-    g.add("grime_color", "uniform", outputcolor=(0.22, 0.19, 0.15, 1.0))
-    g.add("grimy", "blend", {"source": "grime_color", "destination": "surface", "opacity": "grime_level"},
-          blendingmode=COPY, opacitymult=0.55)
+    color_over(g, "grimy", "grime_color", (0.22, 0.19, 0.15, 1.0), "surface", mask="grime_level", blendingmode=COPY,
+               opacitymult=0.55)
     g.add("film", "histogram_scan", {"input_1": "glaze_waves"}, position=0.2, contrast=0.0)
     g.bind("film", "position", lerp(0.0, 0.6, get("dirt")).graph())
     g.add("filmy", "blend", {"source": "grime_color", "destination": "grimy", "opacity": "film"},
           blendingmode=MULTIPLY, opacitymult=0.07)
-    g.add("ao_color", "gradient", {"input1": "ao"},
-          **gradient_keys([(0.0, (0.25, 0.25, 0.25)), (1.0, (1.0, 1.0, 1.0))]))
-    g.add("basecolor", "blend", {"source": "ao_color", "destination": "filmy"},
-          blendingmode=MULTIPLY, opacitymult=0.5)
+    ao_darken(g, "basecolor", "filmy", floor=0.25, opacitymult=0.5)
 
     # ---- roughness and metallic ---------------------------------------------------------------
     g.add("rough_glaze", "histogram_range", {"input": "glaze_waves"}, range=0.06, position=0.16)

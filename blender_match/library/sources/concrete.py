@@ -22,7 +22,7 @@ Exposed parameters
 """
 from __future__ import annotations
 
-from blender_match.library.authoring import constant_map
+from blender_match.library.authoring import color_over, constant_map
 from blender_match.library.expressions import clamp, get, lerp, vector
 from blender_match.translator.runtime import SbsGraph
 
@@ -91,9 +91,8 @@ def build() -> SbsGraph:
     g.add("tint", "uniform", outputcolor=[0.5, 0.49, 0.47, 1.0])
     g.bind("tint", "outputcolor", vector(get("color", 3), 1.0).graph())
     g.add("col_base", "blend", {"source": "variation", "destination": "tint"}, blendingmode=3)
-    g.add("stain_color", "uniform", outputcolor=[0.78, 0.76, 0.72, 1.0])
-    g.add("col_stain", "blend", {"source": "stain_color", "destination": "col_base", "opacity": "stains"},
-          blendingmode=3, opacitymult=0.5)
+    color_over(g, "col_stain", "stain_color", [0.78, 0.76, 0.72, 1.0], "col_base", mask="stains", blendingmode=3,
+               opacitymult=0.5)
     g.add("dark", "uniform", outputcolor=[0.45, 0.44, 0.43, 1.0])
     g.add("cavities", "blend", {"source": "cracks", "destination": "pores_soft"}, blendingmode=5)
     g.add("col_out", "blend", {"source": "dark", "destination": "col_stain", "opacity": "cavities"},

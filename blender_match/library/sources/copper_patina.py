@@ -30,7 +30,11 @@ from blender_match.library.authoring import (
     MULTIPLY,
     OVERLAY,
     SUBTRACT,
+    ao_darken,
+    color_over,
     gradient_keys,
+    gradient_over,
+    normal_and_ao,
     set_material_outputs,
 )
 from blender_match.library.expressions import get, lerp, vector
@@ -69,23 +73,19 @@ def build() -> SbsGraph:
     g.add("copper_base", "uniform", outputcolor=(0.72, 0.42, 0.28, 1.0))
     g.bind("copper_base", "outputcolor", vector(get("copper_color", 3), 1.0).graph())
     g.add("copper_clouds", "clouds_1", seed=9, scale=3.0)
-    g.add("copper_mottle", "gradient", {"input1": "copper_clouds"}, **gradient_keys([
-        (0.0, (0.42, 0.40, 0.40)), (1.0, (0.62, 0.60, 0.58))]))
-    g.add("copper_mottled", "blend", {"source": "copper_mottle", "destination": "copper_base"},
-          blendingmode=OVERLAY, opacitymult=0.7)
+    gradient_over(g, "copper_mottled", "copper_mottle", "copper_clouds",
+                  [(0.0, (0.42, 0.40, 0.40)), (1.0, (0.62, 0.60, 0.58))], "copper_base", blendingmode=OVERLAY,
+                  opacitymult=0.7)
     g.add("polish", "anisotropic_noise", seed=19, x_amount=4, y_amount=192, smoothness=0.5)
-    g.add("polish_tone", "gradient", {"input1": "polish"}, **gradient_keys([
-        (0.0, (0.93, 0.93, 0.93)), (1.0, (1.0, 1.0, 1.0))]))
-    g.add("copper_polished", "blend", {"source": "polish_tone", "destination": "copper_mottled"},
-          blendingmode=MULTIPLY, opacitymult=0.5)
+    ao_darken(g, "copper_polished", "copper_mottled", floor=0.93, opacitymult=0.5, ao="polish",
+              color_name="polish_tone")
     g.add("tarnish_noise", "clouds_2", seed=31, scale=2.0)
     g.add("tarnish_mix", "blend", {"source": "copper_clouds", "destination": "tarnish_noise"},
           blendingmode=OVERLAY, opacitymult=0.5)
     g.add("tarnish_mask", "histogram_scan", {"input_1": "tarnish_mix"}, contrast=0.35)
     g.bind("tarnish_mask", "position", lerp(0.0, 0.85, get("tarnish")).graph())
-    g.add("tarnish_color", "uniform", outputcolor=(0.42, 0.28, 0.20, 1.0))
-    g.add("copper_tarnished", "blend", {"source": "tarnish_color", "destination": "copper_polished",
-                                        "opacity": "tarnish_mask"}, blendingmode=MULTIPLY, opacitymult=0.85)
+    color_over(g, "copper_tarnished", "tarnish_color", (0.42, 0.28, 0.20, 1.0), "copper_polished", mask="tarnish_mask",
+               blendingmode=MULTIPLY, opacitymult=0.85)
 
     # ---- verdigris ---------------------------------------------------------------------------
     g.add("crust_fractal", "fractal_sum_4", seed=8, scale=1.0)
@@ -99,10 +99,9 @@ def build() -> SbsGraph:
     g.bind("patina_tint", "outputcolor", vector(get("patina_color", 3), 1.0).graph())
     g.add("verdigris_flat", "blend", {"source": "verdigris_grad", "destination": "patina_tint"},
           blendingmode=MULTIPLY)
-    g.add("verdigris_shade", "gradient", {"input1": "patch_grunge"}, **gradient_keys([
-        (0.0, (0.62, 0.70, 0.60)), (0.5, (0.95, 0.97, 0.95)), (1.0, (1.0, 1.0, 1.0))]))
-    g.add("verdigris", "blend", {"source": "verdigris_shade", "destination": "verdigris_flat"},
-          blendingmode=MULTIPLY, opacitymult=0.8)
+    gradient_over(g, "verdigris", "verdigris_shade", "patch_grunge",
+                  [(0.0, (0.62, 0.70, 0.60)), (0.5, (0.95, 0.97, 0.95)), (1.0, (1.0, 1.0, 1.0))], "verdigris_flat",
+                  blendingmode=MULTIPLY, opacitymult=0.8)
     g.add("rim_dark", "uniform", outputcolor=(0.55, 0.45, 0.40, 1.0))
     g.add("rim_mask", "histogram_select", {"input": "patina_soft"}, position=0.4, range=0.3, contrast=0.3)
     g.add("copper_rim", "blend", {"source": "rim_dark", "destination": "copper_tarnished",
@@ -119,9 +118,8 @@ def build() -> SbsGraph:
     g.add("copper_flat", "histogram_range", {"input": "copper_height"}, range=0.1, position=0.35)
     g.add("crust_height", "histogram_range", {"input": "crust_detail"}, range=0.35, position=0.65)
     g.add("height", "blend", {"source": "crust_height", "destination": "copper_flat", "opacity": "patina_soft"})
-    g.add("normal", "normal", {"input1": "height"}, intensity=2.0, inversedy=True)
+    normal_and_ao(g, "height", intensity=2.0, height_depth=0.12, spreading=0.08)
     g.bind("normal", "intensity", get("normal_intensity").graph())
-    g.add("ao", "ambient_occlusion_2", {"source": "height"}, height_depth=0.12, spreading=0.08)
 
     # ---- roughness and metallic ---------------------------------------------------------------
     g.add("copper_rough", "histogram_range", {"input": "copper_clouds"}, range=0.12)

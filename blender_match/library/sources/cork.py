@@ -31,8 +31,11 @@ from blender_match.library.authoring import (
     MULTIPLY,
     SOFT_LIGHT,
     SUBTRACT,
+    ao_darken,
+    color_over,
     constant_map,
-    gradient_keys,
+    gradient_over,
+    normal_and_ao,
     set_material_outputs,
 )
 from blender_match.library.expressions import get, lerp, vector
@@ -79,28 +82,20 @@ def build() -> SbsGraph:
     g.add("grained", "blend", {"source": "grain", "destination": "pored"},
           blendingmode=ADD_SUB, opacitymult=0.05)
     g.add("height", "histogram_range", {"input": "grained"}, range=1.0, position=0.5)
-    g.add("normal", "normal", {"input1": "height"}, intensity=2.5, inversedy=True)
-    g.add("ao", "ambient_occlusion_2", {"source": "height"}, height_depth=0.12, spreading=0.05)
+    normal_and_ao(g, "height", intensity=2.5, height_depth=0.12, spreading=0.05)
 
     # ---- colour ------------------------------------------------------------------------------
     g.add("cork_base", "uniform", outputcolor=(0.55, 0.38, 0.24, 1.0))
     g.bind("cork_base", "outputcolor", vector(get("cork_color", 3), 1.0).graph())
-    g.add("granule_tones", "gradient", {"input1": "granules"}, **gradient_keys([
+    gradient_over(g, "cork_granules", "granule_tones", "granules", [
         (0.0, (0.30, 0.26, 0.24)), (0.3, (0.42, 0.39, 0.36)), (0.6, (0.54, 0.53, 0.50)),
-        (1.0, (0.68, 0.66, 0.58))]))
-    g.add("cork_granules", "blend", {"source": "granule_tones", "destination": "cork_base"},
-          blendingmode=SOFT_LIGHT, opacitymult=0.7)
+        (1.0, (0.68, 0.66, 0.58))], "cork_base", blendingmode=SOFT_LIGHT, opacitymult=0.7)
     g.bind("cork_granules", "opacitymult", lerp(0.1, 1.0, get("granule_contrast")).graph())
-    g.add("board_tones", "gradient", {"input1": "flow"}, **gradient_keys([
-        (0.0, (0.44, 0.44, 0.44)), (1.0, (0.56, 0.55, 0.53))]))
-    g.add("cork_board", "blend", {"source": "board_tones", "destination": "cork_granules"},
-          blendingmode=SOFT_LIGHT, opacitymult=0.5)
-    g.add("pore_color", "uniform", outputcolor=(0.16, 0.09, 0.05, 1.0))
-    g.add("cork_pores", "blend", {"source": "pore_color", "destination": "cork_board", "opacity": "pores_all"},
-          blendingmode=MULTIPLY, opacitymult=0.8)
-    g.add("ao_color", "gradient", {"input1": "ao"}, **gradient_keys([(0.0, (0.3, 0.3, 0.3)), (1.0, (1.0, 1.0, 1.0))]))
-    g.add("basecolor", "blend", {"source": "ao_color", "destination": "cork_pores"},
-          blendingmode=MULTIPLY, opacitymult=0.35)
+    gradient_over(g, "cork_board", "board_tones", "flow", [(0.0, (0.44, 0.44, 0.44)), (1.0, (0.56, 0.55, 0.53))],
+                  "cork_granules", blendingmode=SOFT_LIGHT, opacitymult=0.5)
+    color_over(g, "cork_pores", "pore_color", (0.16, 0.09, 0.05, 1.0), "cork_board", mask="pores_all",
+               blendingmode=MULTIPLY, opacitymult=0.8)
+    ao_darken(g, "basecolor", "cork_pores", floor=0.3, opacitymult=0.35)
 
     # ---- roughness and metallic ---------------------------------------------------------------
     g.add("rough_base", "histogram_range", {"input": "granules"}, range=0.08, position=0.85)

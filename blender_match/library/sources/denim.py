@@ -34,8 +34,11 @@ from blender_match.library.authoring import (
     MULTIPLY,
     SCREEN,
     SOFT_LIGHT,
+    ao_darken,
+    color_over,
     constant_map,
-    gradient_keys,
+    gradient_over,
+    normal_and_ao,
     set_material_outputs,
 )
 from blender_match.library.expressions import get, lerp, vector
@@ -68,19 +71,16 @@ def build() -> SbsGraph:
     g.add("lie", "clouds_2", seed=72, scale=2.0)
     g.add("lying", "blend", {"source": "lie", "destination": "woven"}, blendingmode=ADD_SUB, opacitymult=0.06)
     g.add("height", "histogram_range", {"input": "lying"}, range=1.0, position=0.5)
-    g.add("normal", "normal", {"input1": "height"}, intensity=3.0, inversedy=True)
+    normal_and_ao(g, "height", intensity=3.0, height_depth=0.1, spreading=0.04)
     g.bind("normal", "intensity", lerp(0.5, 7.0, get("twill_depth")).graph())
-    g.add("ao", "ambient_occlusion_2", {"source": "height"}, height_depth=0.1, spreading=0.04)
 
     # ---- colour --------------------------------------------------------------------------------
     g.add("dye", "uniform", outputcolor=(0.10, 0.16, 0.32, 1.0))
     g.bind("dye", "outputcolor", vector(get("denim_color", 3), 1.0).graph())
     g.add("weft_base", "uniform", outputcolor=(0.78, 0.77, 0.72, 1.0))
     g.bind("weft_base", "outputcolor", vector(get("weft_color", 3), 1.0).graph())
-    g.add("streak_tone", "gradient", {"input1": "ring"}, **gradient_keys([
-        (0.0, (0.38, 0.38, 0.38)), (1.0, (0.66, 0.66, 0.66))]))
-    g.add("dye_streaked", "blend", {"source": "streak_tone", "destination": "dye"},
-          blendingmode=SOFT_LIGHT, opacitymult=0.8)
+    gradient_over(g, "dye_streaked", "streak_tone", "ring", [(0.0, (0.38, 0.38, 0.38)), (1.0, (0.66, 0.66, 0.66))],
+                  "dye", blendingmode=SOFT_LIGHT, opacitymult=0.8)
     g.add("weft_tinted", "blend", {"source": "dye", "destination": "weft_base"},
           blendingmode=MULTIPLY, opacitymult=0.45)
     g.add("threads", "blend", {"source": "dye_streaked", "destination": "weft_tinted", "opacity": "ribs"},
@@ -94,17 +94,14 @@ def build() -> SbsGraph:
     g.add("tops", "blend", {"source": "height", "destination": "wash_streak"}, blendingmode=MULTIPLY, opacitymult=0.5)
     g.add("worn", "histogram_scan", {"input_1": "tops"}, position=0.45, contrast=0.05)
     g.bind("worn", "position", lerp(0.05, 0.85, get("fade")).graph())
-    g.add("fade_color", "uniform", outputcolor=(0.45, 0.46, 0.48, 1.0))
-    g.add("faded", "blend", {"source": "fade_color", "destination": "threads", "opacity": "worn"},
-          blendingmode=SCREEN, opacitymult=0.7)
+    color_over(g, "faded", "fade_color", (0.45, 0.46, 0.48, 1.0), "threads", mask="worn", blendingmode=SCREEN,
+               opacitymult=0.7)
     g.bind("faded", "opacitymult", lerp(0.1, 0.6, get("fade")).graph())
-    g.add("shade", "gradient", {"input1": "height"}, **gradient_keys([
-        (0.0, (0.35, 0.35, 0.35)), (0.5, (0.80, 0.80, 0.80)), (1.0, (1.0, 1.0, 1.0))]))
-    g.add("shaded", "blend", {"source": "shade", "destination": "faded"}, blendingmode=MULTIPLY, opacitymult=0.5)
+    gradient_over(g, "shaded", "shade", "height",
+                  [(0.0, (0.35, 0.35, 0.35)), (0.5, (0.80, 0.80, 0.80)), (1.0, (1.0, 1.0, 1.0))], "faded",
+                  blendingmode=MULTIPLY, opacitymult=0.5)
     g.bind("shaded", "opacitymult", lerp(0.2, 0.8, get("twill_depth")).graph())
-    g.add("ao_color", "gradient", {"input1": "ao"},
-          **gradient_keys([(0.0, (0.35, 0.35, 0.35)), (1.0, (1.0, 1.0, 1.0))]))
-    g.add("basecolor", "blend", {"source": "ao_color", "destination": "shaded"}, blendingmode=MULTIPLY, opacitymult=0.4)
+    ao_darken(g, "basecolor", "shaded", floor=0.35, opacitymult=0.4)
 
     # ---- roughness and metallic ------------------------------------------------------------------
     g.add("rough_inv", "invert_grayscale", {"source": "height"})

@@ -34,13 +34,18 @@ from blender_match.library.authoring import (
     ADD,
     ADD_SUB,
     COPY,
-    MAX,
     MULTIPLY,
     OVERLAY,
     SOFT_LIGHT,
     SUBTRACT,
+    color_over,
     constant_map,
+    fold,
     gradient_keys,
+    gradient_over,
+    keys_near,
+    normal_and_ao,
+    rgba_near,
     set_material_outputs,
 )
 from blender_match.library.expressions import const, get, lerp, vector
@@ -52,35 +57,12 @@ RING_PROFILE = [(0.0, (0.0, 0.0, 0.0)), (0.1, (0.2, 0.2, 0.2)), (0.3, (0.85, 0.8
                 (1.0, (1.0, 1.0, 1.0))]
 
 
-def _fold(g: SbsGraph, src: str, i: int) -> str:
-    """|2x - 1| of ``src`` from histogram scans (max(0, 2x-1) and max(0, 1-2x), blended by max):
-    each fold doubles the number of periods of a distance field."""
-    g.add(f"fold{i}_inv", "invert_grayscale", {"source": src})
-    g.add(f"fold{i}_hi", "histogram_scan", {"input_1": src}, position=0.25, contrast=0.0)
-    g.add(f"fold{i}_lo", "histogram_scan", {"input_1": f"fold{i}_inv"}, position=0.25, contrast=0.0)
-    g.add(f"fold{i}", "blend", {"source": f"fold{i}_lo", "destination": f"fold{i}_hi"},
-          blendingmode=MAX, opacitymult=1.0)
-    return f"fold{i}"
-
-
 BLOCK_TONES = [(0.0, (0.26, 0.25, 0.25)), (0.3, (0.42, 0.41, 0.40)), (0.6, (0.55, 0.53, 0.50)),
                (1.0, (0.70, 0.66, 0.58))]
 CLOUD_TONES = [(0.0, (0.44, 0.44, 0.44)), (1.0, (0.56, 0.55, 0.53))]
 GLUE_COLOR = (0.45, 0.40, 0.36)
 PORE_COLOR = (0.22, 0.15, 0.09)
 RAY_COLOR = (0.62, 0.62, 0.62)
-
-
-def _keys_near(stops, d):
-    """A tight (lo, hi) sampling range around a gradient's key colours (alpha kept at 1): the
-    sampler draws each channel independently, and a wide range would tint the tones."""
-    lo = [c for _, rgb in stops for c in (*(max(0.0, v - d) for v in rgb), 1.0)]
-    hi = [c for _, rgb in stops for c in (*(min(1.0, v + d) for v in rgb), 1.0)]
-    return lo, hi
-
-
-def _rgba_near(rgb, d):
-    return [max(0.0, v - d) for v in rgb] + [1.0], [min(1.0, v + d) for v in rgb] + [1.0]
 
 
 def build() -> SbsGraph:
@@ -111,7 +93,7 @@ def build() -> SbsGraph:
           intensity=64.0, warpangle=0.12)
     folded = "field"
     for i in range(FOLDS):
-        folded = _fold(g, folded, i)
+        folded = fold(g, folded, i)
     g.add("rings", "gradient", {"input1": folded}, colorswitch=False, **gradient_keys(RING_PROFILE))
 
     # ---- radial rays -------------------------------------------------------------------------
@@ -136,23 +118,18 @@ def build() -> SbsGraph:
     g.add("ringed", "blend", {"source": "latewood", "destination": "earlywood", "opacity": "late_mask"},
           blendingmode=COPY, opacitymult=0.6)
     g.bind("ringed", "opacitymult", lerp(0.1, 1.0, get("ring_contrast")).graph())
-    g.add("block_tones", "gradient", {"input1": "block_id"}, **gradient_keys(BLOCK_TONES))
-    g.add("blocks_varied", "blend", {"source": "block_tones", "destination": "ringed"},
-          blendingmode=OVERLAY, opacitymult=0.5)
+    gradient_over(g, "blocks_varied", "block_tones", "block_id", BLOCK_TONES, "ringed", blendingmode=OVERLAY,
+                  opacitymult=0.5)
     g.bind("blocks_varied", "opacitymult", get("block_variation").graph())
     g.add("clouds", "clouds_2", seed=87, scale=3.0)
-    g.add("cloud_tones", "gradient", {"input1": "clouds"}, **gradient_keys(CLOUD_TONES))
-    g.add("clouded", "blend", {"source": "cloud_tones", "destination": "blocks_varied"},
-          blendingmode=SOFT_LIGHT, opacitymult=0.5)
-    g.add("ray_color", "uniform", outputcolor=(*RAY_COLOR, 1.0))
-    g.add("rayed", "blend", {"source": "ray_color", "destination": "clouded", "opacity": "rays"},
-          blendingmode=SOFT_LIGHT, opacitymult=0.5)
-    g.add("pore_color", "uniform", outputcolor=(*PORE_COLOR, 1.0))
-    g.add("pored", "blend", {"source": "pore_color", "destination": "rayed", "opacity": "pores"},
-          blendingmode=MULTIPLY, opacitymult=0.35)
-    g.add("glue_color", "uniform", outputcolor=(*GLUE_COLOR, 1.0))
-    g.add("basecolor", "blend", {"source": "glue_color", "destination": "pored", "opacity": "glue_line"},
-          blendingmode=MULTIPLY, opacitymult=0.8)
+    gradient_over(g, "clouded", "cloud_tones", "clouds", CLOUD_TONES, "blocks_varied", blendingmode=SOFT_LIGHT,
+                  opacitymult=0.5)
+    color_over(g, "rayed", "ray_color", (*RAY_COLOR, 1.0), "clouded", mask="rays", blendingmode=SOFT_LIGHT,
+               opacitymult=0.5)
+    color_over(g, "pored", "pore_color", (*PORE_COLOR, 1.0), "rayed", mask="pores", blendingmode=MULTIPLY,
+               opacitymult=0.35)
+    color_over(g, "basecolor", "glue_color", (*GLUE_COLOR, 1.0), "pored", mask="glue_line", blendingmode=MULTIPLY,
+               opacitymult=0.8)
 
     # ---- height and normal -------------------------------------------------------------------
     g.add("h_rings", "histogram_range", {"input": "late_mask"}, range=0.12, position=0.6)
@@ -161,8 +138,7 @@ def build() -> SbsGraph:
     g.add("h_glue", "blend", {"source": "glue_line", "destination": "h_pores"},
           blendingmode=SUBTRACT, opacitymult=0.3)
     g.add("height", "histogram_range", {"input": "h_glue"}, range=1.0, position=0.5)
-    g.add("normal", "normal", {"input1": "height"}, intensity=2.0, inversedy=True)
-    g.add("ao", "ambient_occlusion_2", {"source": "height"}, height_depth=0.08, spreading=0.05)
+    normal_and_ao(g, "height", intensity=2.0, height_depth=0.08, spreading=0.05)
 
     # ---- roughness and metallic ---------------------------------------------------------------
     g.add("rough_base", "histogram_range", {"input": "clouds"}, range=0.1, position=0.6)
@@ -193,11 +169,11 @@ SAMPLE_RANGES = {
     "pored.opacitymult": (0.15, 0.5),
     "normal.intensity": (1.0, 4.0),
     "ray_streaks.intensity": (3.0, 10.0),
-    "block_tones.colors": _keys_near(BLOCK_TONES, 0.03),
-    "cloud_tones.colors": _keys_near(CLOUD_TONES, 0.03),
-    "glue_color.outputcolor": _rgba_near(GLUE_COLOR, 0.04),
-    "pore_color.outputcolor": _rgba_near(PORE_COLOR, 0.05),
-    "ray_color.outputcolor": _rgba_near(RAY_COLOR, 0.04),
+    "block_tones.colors": keys_near(BLOCK_TONES, 0.03),
+    "cloud_tones.colors": keys_near(CLOUD_TONES, 0.03),
+    "glue_color.outputcolor": rgba_near(GLUE_COLOR, 0.04),
+    "pore_color.outputcolor": rgba_near(PORE_COLOR, 0.05),
+    "ray_color.outputcolor": rgba_near(RAY_COLOR, 0.04),
     "rings.positions": ([0.0, 0.06, 0.22, 1.0], [0.0, 0.14, 0.38, 1.0]),
     # the folds are exact arithmetic (|2x - 1|): their scans and max blends stay pinned
     **{f"fold{i}_{side}.{param}": (value, value) for i in range(FOLDS) for side in ("hi", "lo")

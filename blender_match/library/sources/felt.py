@@ -29,8 +29,10 @@ from blender_match.library.authoring import (
     MAX,
     SCREEN,
     SOFT_LIGHT,
+    ao_darken,
+    color_over,
     constant_map,
-    gradient_keys,
+    gradient_over,
     set_material_outputs,
 )
 from blender_match.library.expressions import get, lerp, vector
@@ -86,22 +88,15 @@ def build() -> SbsGraph:
     # ---- colour ------------------------------------------------------------------------------
     g.add("wool", "uniform", outputcolor=(0.55, 0.12, 0.12, 1.0))
     g.bind("wool", "outputcolor", vector(get("felt_color", 3), 1.0).graph())
-    g.add("mottle_tone", "gradient", {"input1": "density"}, **gradient_keys([
-        (0.0, (0.43, 0.43, 0.43)), (1.0, (0.57, 0.57, 0.57))]))
-    g.add("mottled", "blend", {"source": "mottle_tone", "destination": "wool"},
-          blendingmode=SOFT_LIGHT, opacitymult=0.5)
+    gradient_over(g, "mottled", "mottle_tone", "density", [(0.0, (0.43, 0.43, 0.43)), (1.0, (0.57, 0.57, 0.57))],
+                  "wool", blendingmode=SOFT_LIGHT, opacitymult=0.5)
     g.bind("mottled", "opacitymult", lerp(0.0, 1.0, get("mottling")).graph())
-    g.add("fibre_tone", "gradient", {"input1": "fibres"}, **gradient_keys([
-        (0.0, (0.36, 0.36, 0.36)), (1.0, (0.66, 0.66, 0.66))]))
-    g.add("fuzzed", "blend", {"source": "fibre_tone", "destination": "mottled"},
-          blendingmode=SOFT_LIGHT, opacitymult=0.5)
+    gradient_over(g, "fuzzed", "fibre_tone", "fibres", [(0.0, (0.36, 0.36, 0.36)), (1.0, (0.66, 0.66, 0.66))],
+                  "mottled", blendingmode=SOFT_LIGHT, opacitymult=0.5)
     g.bind("fuzzed", "opacitymult", lerp(0.1, 1.0, get("fuzz")).graph())
-    g.add("pill_color", "uniform", outputcolor=(0.25, 0.25, 0.25, 1.0))
-    g.add("pill_lit", "blend", {"source": "pill_color", "destination": "fuzzed", "opacity": "pills"},
-          blendingmode=SCREEN, opacitymult=0.6)
-    g.add("ao_color", "gradient", {"input1": "ao"}, **gradient_keys([(0.0, (0.4, 0.4, 0.4)), (1.0, (1.0, 1.0, 1.0))]))
-    g.add("basecolor", "blend", {"source": "ao_color", "destination": "pill_lit"},
-          blendingmode=SOFT_LIGHT, opacitymult=0.4)
+    color_over(g, "pill_lit", "pill_color", (0.25, 0.25, 0.25, 1.0), "fuzzed", mask="pills", blendingmode=SCREEN,
+               opacitymult=0.6)
+    ao_darken(g, "basecolor", "pill_lit", floor=0.4, opacitymult=0.4, blendingmode=SOFT_LIGHT)
 
     # ---- roughness and metallic ---------------------------------------------------------------
     g.add("roughness", "histogram_range", {"input": "fibres"}, range=0.08, position=0.92)

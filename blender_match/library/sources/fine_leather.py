@@ -31,8 +31,10 @@ from blender_match.library.authoring import (
     MULTIPLY,
     SOFT_LIGHT,
     SUBTRACT,
+    ao_darken,
     constant_map,
-    gradient_keys,
+    gradient_over,
+    normal_and_ao,
     set_material_outputs,
 )
 from blender_match.library.expressions import get, lerp, vector
@@ -73,35 +75,27 @@ def build() -> SbsGraph:
     g.add("undulated", "blend", {"source": "undulation", "destination": "pored"},
           blendingmode=ADD_SUB, opacitymult=0.1)
     g.add("height", "histogram_range", {"input": "undulated"}, range=1.0, position=0.5)
-    g.add("normal", "normal", {"input1": "height"}, intensity=1.4, inversedy=True)
-    g.add("ao", "ambient_occlusion_2", {"source": "height"}, height_depth=0.1, spreading=0.04)
+    normal_and_ao(g, "height", intensity=1.4, height_depth=0.1, spreading=0.04)
 
     # ---- colour ------------------------------------------------------------------------------
     g.add("dye", "uniform", outputcolor=(0.30, 0.15, 0.07, 1.0))
     g.bind("dye", "outputcolor", vector(get("leather_color", 3), 1.0).graph())
-    g.add("mottle", "gradient", {"input1": "flow"}, **gradient_keys([
-        (0.0, (0.40, 0.40, 0.40)), (0.5, (0.50, 0.50, 0.50)), (1.0, (0.60, 0.58, 0.56))]))
-    g.add("dye_mottled", "blend", {"source": "mottle", "destination": "dye"},
-          blendingmode=SOFT_LIGHT, opacitymult=0.6)
+    gradient_over(g, "dye_mottled", "mottle", "flow",
+                  [(0.0, (0.40, 0.40, 0.40)), (0.5, (0.50, 0.50, 0.50)), (1.0, (0.60, 0.58, 0.56))], "dye",
+                  blendingmode=SOFT_LIGHT, opacitymult=0.6)
     g.bind("dye_mottled", "opacitymult", get("mottling").graph())
-    g.add("groove_tones", "gradient", {"input1": "height"}, **gradient_keys([
-        (0.0, (0.45, 0.44, 0.43)), (0.5, (0.85, 0.85, 0.85)), (1.0, (1.0, 1.0, 1.0))]))
-    g.add("dye_pooled", "blend", {"source": "groove_tones", "destination": "dye_mottled"},
-          blendingmode=MULTIPLY, opacitymult=0.6)
+    gradient_over(g, "dye_pooled", "groove_tones", "height",
+                  [(0.0, (0.45, 0.44, 0.43)), (0.5, (0.85, 0.85, 0.85)), (1.0, (1.0, 1.0, 1.0))], "dye_mottled",
+                  blendingmode=MULTIPLY, opacitymult=0.6)
     g.bind("dye_pooled", "opacitymult", lerp(0.2, 0.9, get("grain_depth")).graph())
-    g.add("pore_tone", "gradient", {"input1": "pore_pits"}, **gradient_keys([
-        (0.0, (1.0, 1.0, 1.0)), (1.0, (0.55, 0.53, 0.52))]))
-    g.add("dye_pores", "blend", {"source": "pore_tone", "destination": "dye_pooled"},
-          blendingmode=MULTIPLY, opacitymult=0.5)
+    gradient_over(g, "dye_pores", "pore_tone", "pore_pits", [(0.0, (1.0, 1.0, 1.0)), (1.0, (0.55, 0.53, 0.52))],
+                  "dye_pooled", blendingmode=MULTIPLY, opacitymult=0.5)
     g.bind("dye_pores", "opacitymult", lerp(0.0, 0.9, get("pores")).graph())
     g.add("top_tone", "uniform", outputcolor=(0.58, 0.56, 0.54, 1.0))
     g.add("tops", "histogram_scan", {"input_1": "height"}, position=0.7, contrast=0.4)
     g.add("dye_tops", "blend", {"source": "top_tone", "destination": "dye_pores", "opacity": "tops"},
           blendingmode=SOFT_LIGHT, opacitymult=0.4)
-    g.add("ao_color", "gradient", {"input1": "ao"},
-          **gradient_keys([(0.0, (0.35, 0.35, 0.35)), (1.0, (1.0, 1.0, 1.0))]))
-    g.add("basecolor", "blend", {"source": "ao_color", "destination": "dye_tops"},
-          blendingmode=MULTIPLY, opacitymult=0.3)
+    ao_darken(g, "basecolor", "dye_tops", floor=0.35, opacitymult=0.3)
 
     # ---- roughness and metallic ---------------------------------------------------------------
     g.add("rough_inv", "invert_grayscale", {"source": "height"})

@@ -29,7 +29,8 @@ from blender_match.library.authoring import (
     ADD_SUB,
     MULTIPLY,
     SUBTRACT,
-    gradient_keys,
+    color_over,
+    gradient_over,
     set_material_outputs,
 )
 from blender_match.library.expressions import get, lerp, vector
@@ -86,19 +87,15 @@ def build() -> SbsGraph:
     g.bind("zinc", "outputcolor", vector(get("zinc_color", 3), 1.0).graph())
     # zinc is nearly neutral: keep the colour's lightness, only a hint of its hue
     g.add("zinc_luma", "grayscaleconversion", {"input1": "zinc"})
-    g.add("zinc_gray", "gradient", {"input1": "zinc_luma"}, **gradient_keys([
-        (0.0, (0.0, 0.0, 0.0)), (1.0, (1.0, 1.0, 1.0))]))
-    g.add("zinc_neutral", "blend", {"source": "zinc_gray", "destination": "zinc"}, opacitymult=0.75)
+    gradient_over(g, "zinc_neutral", "zinc_gray", "zinc_luma", [(0.0, (0.0, 0.0, 0.0)), (1.0, (1.0, 1.0, 1.0))], "zinc",
+                  opacitymult=0.75)
     g.add("grain_feathered", "blend", {"source": "feather_level", "destination": "grains"},
           blendingmode=ADD_SUB, opacitymult=0.2)
-    g.add("grain_feather_tone", "gradient", {"input1": "grain_feathered"}, **gradient_keys([
-        (0.0, (0.30, 0.30, 0.30)), (1.0, (0.70, 0.70, 0.71))]))
-    g.add("zinc_grains", "blend", {"source": "grain_feather_tone", "destination": "zinc_neutral"},
-          blendingmode=9, opacitymult=0.5)
+    gradient_over(g, "zinc_grains", "grain_feather_tone", "grain_feathered",
+                  [(0.0, (0.30, 0.30, 0.30)), (1.0, (0.70, 0.70, 0.71))], "zinc_neutral", blendingmode=9,
+                  opacitymult=0.5)
     g.bind("zinc_grains", "opacitymult", lerp(0.0, 0.8, get("spangle_contrast")).graph())
-    g.add("oxide_color", "uniform", outputcolor=(0.84, 0.84, 0.81, 1.0))
-    g.add("basecolor", "blend", {"source": "oxide_color", "destination": "zinc_grains",
-                                 "opacity": "rust_mask"}, opacitymult=0.9)
+    color_over(g, "basecolor", "oxide_color", (0.84, 0.84, 0.81, 1.0), "zinc_grains", mask="rust_mask", opacitymult=0.9)
 
     # ---- roughness and metallic -------------------------------------------------------------------------------
     g.add("grain_rough", "histogram_range", {"input": "grains"}, range=0.3, position=0.4)

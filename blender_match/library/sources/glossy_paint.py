@@ -29,8 +29,9 @@ from blender_match.library.authoring import (
     MULTIPLY,
     OVERLAY,
     SOFT_LIGHT,
+    color_over,
     constant_map,
-    gradient_keys,
+    gradient_over,
     set_material_outputs,
 )
 from blender_match.library.expressions import get, lerp, vector
@@ -88,17 +89,13 @@ def build() -> SbsGraph:
     # ---- colour ------------------------------------------------------------------------------
     g.add("paint", "uniform", outputcolor=(0.06, 0.20, 0.58, 1.0))
     g.bind("paint", "outputcolor", vector(get("paint_color", 3), 1.0).graph())
-    g.add("pooling", "gradient", {"input1": "streak_height"}, **gradient_keys([
-        (0.0, (0.86, 0.86, 0.86)), (0.5, (0.97, 0.97, 0.97)), (1.0, (1.0, 1.0, 1.0))]))
-    g.add("paint_pooled", "blend", {"source": "pooling", "destination": "paint"},
-          blendingmode=MULTIPLY, opacitymult=0.8)
-    g.add("mottle", "gradient", {"input1": "wander"}, **gradient_keys([
-        (0.0, (0.45, 0.45, 0.45)), (1.0, (0.55, 0.55, 0.55))]))
-    g.add("paint_mottled", "blend", {"source": "mottle", "destination": "paint_pooled"},
-          blendingmode=SOFT_LIGHT, opacitymult=0.5)
-    g.add("dust_color", "uniform", outputcolor=(0.72, 0.71, 0.68, 1.0))
-    g.add("basecolor", "blend", {"source": "dust_color", "destination": "paint_mottled",
-                                 "opacity": "dust_mask"}, opacitymult=0.85)
+    gradient_over(g, "paint_pooled", "pooling", "streak_height",
+                  [(0.0, (0.86, 0.86, 0.86)), (0.5, (0.97, 0.97, 0.97)), (1.0, (1.0, 1.0, 1.0))], "paint",
+                  blendingmode=MULTIPLY, opacitymult=0.8)
+    gradient_over(g, "paint_mottled", "mottle", "wander", [(0.0, (0.45, 0.45, 0.45)), (1.0, (0.55, 0.55, 0.55))],
+                  "paint_pooled", blendingmode=SOFT_LIGHT, opacitymult=0.5)
+    color_over(g, "basecolor", "dust_color", (0.72, 0.71, 0.68, 1.0), "paint_mottled", mask="dust_mask",
+               opacitymult=0.85)
 
     # ---- roughness and metallic ---------------------------------------------------------------
     g.add("smudges_noise", "grunge_map_002", seed=78, scale=2.0)

@@ -33,8 +33,11 @@ from blender_match.library.authoring import (
     COPY,
     MULTIPLY,
     SUBTRACT,
+    color_over,
     constant_map,
     gradient_keys,
+    gradient_over,
+    pinned_keys,
     set_material_outputs,
 )
 from blender_match.library.expressions import get, lerp, vector
@@ -86,19 +89,16 @@ def build() -> SbsGraph:
     g.bind("feldspar_shaded", "opacitymult", lerp(0.0, 0.9, get("crystal_contrast")).graph())
     g.add("col_feldspar", "blend", {"source": "feldspar_shaded", "destination": "quartz_toned",
                                     "opacity": "feldspar_mask"}, blendingmode=COPY, opacitymult=1.0)
-    g.add("dark_tone", "gradient", {"input1": "fine_cells"}, **gradient_keys(DARK_TONE))
-    g.add("col_dark", "blend", {"source": "dark_tone", "destination": "col_feldspar", "opacity": "dark_soft"},
-          blendingmode=COPY, opacitymult=1.0)
+    gradient_over(g, "col_dark", "dark_tone", "fine_cells", DARK_TONE, "col_feldspar", mask="dark_soft",
+                  blendingmode=COPY, opacitymult=1.0)
     g.add("sparkle_noise", "white_noise", seed=55)
     g.add("sparkle", "histogram_scan", {"input_1": "sparkle_noise"}, position=0.03, contrast=0.9)
-    g.add("sparkle_color", "uniform", outputcolor=(0.85, 0.84, 0.82, 1.0))
-    g.add("col_sparkle", "blend", {"source": "sparkle_color", "destination": "col_dark", "opacity": "sparkle"},
-          blendingmode=COPY, opacitymult=0.5)
+    color_over(g, "col_sparkle", "sparkle_color", (0.85, 0.84, 0.82, 1.0), "col_dark", mask="sparkle",
+               blendingmode=COPY, opacitymult=0.5)
     g.add("slab_clouds", "clouds_2", seed=56, scale=2.0)
     g.add("slab_tone", "gradient", {"input1": "slab_clouds"}, **gradient_keys(SLAB_TONE))
-    g.add("crystal_var", "gradient", {"input1": "fine_warp"}, **gradient_keys(CRYSTAL_VAR))
-    g.add("col_var", "blend", {"source": "crystal_var", "destination": "col_sparkle"},
-          blendingmode=ADD_SUB, opacitymult=0.5)
+    gradient_over(g, "col_var", "crystal_var", "fine_warp", CRYSTAL_VAR, "col_sparkle", blendingmode=ADD_SUB,
+                  opacitymult=0.5)
     g.bind("col_var", "opacitymult", lerp(0.0, 0.8, get("crystal_contrast")).graph())
     g.add("basecolor", "blend", {"source": "slab_tone", "destination": "col_var"},
           blendingmode=ADD_SUB, opacitymult=0.4)
@@ -133,12 +133,6 @@ def build() -> SbsGraph:
 
 FAMILY = "stone"
 
-def _fixed(stops):
-    """A gradient's keys pinned (sampling them channel by channel would tint a neutral key)."""
-    keys = gradient_keys(stops)
-    return {"positions": (keys["positions"], keys["positions"]), "colors": (keys["colors"], keys["colors"])}
-
-
 SAMPLE_RANGES = {
     "exposed.feldspar_color": ((0.3, 0.22, 0.18), (0.85, 0.58, 0.56)),
     "feldspar_muted.hue": (0.5, 0.5),
@@ -164,5 +158,5 @@ SAMPLE_RANGES = {
     **{f"{node}.{p}": r for node, stops in (("quartz", QUARTZ), ("feldspar_shade", FELDSPAR_SHADE),
                                              ("dark_tone", DARK_TONE), ("slab_tone", SLAB_TONE),
                                              ("crystal_var", CRYSTAL_VAR))
-       for p, r in _fixed(stops).items()},
+       for p, r in pinned_keys(stops).items()},
 }

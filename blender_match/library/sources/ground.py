@@ -19,7 +19,7 @@ Exposed parameters
 """
 from __future__ import annotations
 
-from blender_match.library.authoring import constant_map
+from blender_match.library.authoring import color_over, constant_map
 from blender_match.library.expressions import clamp, get, lerp, vector
 from blender_match.translator.runtime import SbsGraph
 
@@ -79,8 +79,7 @@ def build() -> SbsGraph:
     g.add("soil_tint", "uniform", outputcolor=[0.36, 0.28, 0.21, 1.0])
     g.bind("soil_tint", "outputcolor", vector(get("soil_color", 3), 1.0).graph())
     g.add("soil_col", "blend", {"source": "soil_var", "destination": "soil_tint"}, blendingmode=3)
-    g.add("wet", "uniform", outputcolor=[0.55, 0.52, 0.5, 1.0])
-    g.add("soil_wet", "blend", {"source": "wet", "destination": "soil_col"}, blendingmode=3, opacitymult=0.2)
+    color_over(g, "soil_wet", "wet", [0.55, 0.52, 0.5, 1.0], "soil_col", blendingmode=3, opacitymult=0.2)
     g.bind("soil_wet", "opacitymult", moisture.graph())
     g.add("peb_lum", "blend", {"source": "big", "destination": "pebbles_w"}, blendingmode=4, opacitymult=0.6)
     g.add("peb_col", "gradient", {"input1": "peb_lum"},

@@ -31,7 +31,9 @@ from blender_match.library.authoring import (
     MULTIPLY,
     SCREEN,
     SUBTRACT,
-    gradient_keys,
+    color_over,
+    gradient_over,
+    normal_and_ao,
     set_material_outputs,
 )
 from blender_match.library.expressions import get, lerp, vector
@@ -70,8 +72,7 @@ def build() -> SbsGraph:
     g.bind("cup_depth", "range", lerp(0.05, 0.8, get("dent_depth")).graph())
     g.add("height", "blend", {"source": "sheet_clouds", "destination": "cup_depth"},
           blendingmode=ADD_SUB, opacitymult=0.08)
-    g.add("normal", "normal", {"input1": "height"}, intensity=3.0, inversedy=True)
-    g.add("ao", "ambient_occlusion_2", {"source": "height"}, height_depth=0.3, spreading=0.1)
+    normal_and_ao(g, "height", intensity=3.0, height_depth=0.3, spreading=0.1)
 
     # ---- tarnish mask ---------------------------------------------------------------------------------
     g.add("tarnish_clouds", "clouds_1", seed=75, scale=2.0)
@@ -84,17 +85,14 @@ def build() -> SbsGraph:
     # ---- colour ----------------------------------------------------------------------------------------
     g.add("tint", "uniform", outputcolor=(0.85, 0.52, 0.38, 1.0))
     g.bind("tint", "outputcolor", vector(get("metal_color", 3), 1.0).graph())
-    g.add("ridge_tone", "gradient", {"input1": "cups_norm"}, **gradient_keys([
-        (0.0, (0.86, 0.86, 0.86)), (0.7, (0.95, 0.95, 0.95)), (1.0, (1.0, 1.0, 1.0))]))
-    g.add("tint_ridges", "blend", {"source": "ridge_tone", "destination": "tint"},
-          blendingmode=MULTIPLY)
-    g.add("sheet_tone", "gradient", {"input1": "sheet_clouds"}, **gradient_keys([
-        (0.0, (0.12, 0.12, 0.12)), (1.0, (0.28, 0.28, 0.28))]))
-    g.add("tint_mottled", "blend", {"source": "sheet_tone", "destination": "tint_ridges"},
-          blendingmode=SCREEN, opacitymult=0.4)
-    g.add("oxide_color", "uniform", outputcolor=(0.16, 0.10, 0.07, 1.0))
-    g.add("oxide_on_metal", "blend", {"source": "oxide_color", "destination": "tint_mottled"},
-          blendingmode=MULTIPLY, opacitymult=0.85)
+    gradient_over(g, "tint_ridges", "ridge_tone", "cups_norm",
+                  [(0.0, (0.86, 0.86, 0.86)), (0.7, (0.95, 0.95, 0.95)), (1.0, (1.0, 1.0, 1.0))], "tint",
+                  blendingmode=MULTIPLY)
+    gradient_over(g, "tint_mottled", "sheet_tone", "sheet_clouds",
+                  [(0.0, (0.12, 0.12, 0.12)), (1.0, (0.28, 0.28, 0.28))], "tint_ridges", blendingmode=SCREEN,
+                  opacitymult=0.4)
+    color_over(g, "oxide_on_metal", "oxide_color", (0.16, 0.10, 0.07, 1.0), "tint_mottled", blendingmode=MULTIPLY,
+               opacitymult=0.85)
     g.add("basecolor", "blend", {"source": "oxide_on_metal", "destination": "tint_mottled",
                                  "opacity": "tarnish_mask"}, opacitymult=0.85)
 

@@ -33,8 +33,9 @@ from blender_match.library.authoring import (
     MAX,
     MULTIPLY,
     SOFT_LIGHT,
+    ao_darken,
     constant_map,
-    gradient_keys,
+    gradient_over,
     set_material_outputs,
 )
 from blender_match.library.expressions import get, lerp, vector
@@ -97,19 +98,14 @@ def build() -> SbsGraph:
     g.bind("flecks", "position", lerp(0.1, 0.9, get("heather")).graph())
     g.add("heathered", "blend", {"source": "second", "destination": "yarn", "opacity": "flecks"},
           blendingmode=COPY, opacitymult=0.9)
-    g.add("shade", "gradient", {"input1": "height"}, **gradient_keys([
-        (0.0, (0.12, 0.12, 0.12)), (0.5, (0.72, 0.72, 0.72)), (1.0, (1.0, 1.0, 1.0))]))
-    g.add("shaded", "blend", {"source": "shade", "destination": "heathered"},
-          blendingmode=MULTIPLY, opacitymult=0.6)
+    gradient_over(g, "shaded", "shade", "height",
+                  [(0.0, (0.12, 0.12, 0.12)), (0.5, (0.72, 0.72, 0.72)), (1.0, (1.0, 1.0, 1.0))], "heathered",
+                  blendingmode=MULTIPLY, opacitymult=0.6)
     g.bind("shaded", "opacitymult", lerp(0.4, 1.0, get("stitch_depth")).graph())
-    g.add("fuzz_tone", "gradient", {"input1": "fuzz_soft"}, **gradient_keys([
-        (0.0, (0.42, 0.42, 0.42)), (1.0, (0.60, 0.60, 0.60))]))
-    g.add("fuzz_colored", "blend", {"source": "fuzz_tone", "destination": "shaded"},
-          blendingmode=SOFT_LIGHT, opacitymult=0.5)
+    gradient_over(g, "fuzz_colored", "fuzz_tone", "fuzz_soft", [(0.0, (0.42, 0.42, 0.42)), (1.0, (0.60, 0.60, 0.60))],
+                  "shaded", blendingmode=SOFT_LIGHT, opacitymult=0.5)
     g.bind("fuzz_colored", "opacitymult", lerp(0.1, 0.9, get("fuzz")).graph())
-    g.add("ao_color", "gradient", {"input1": "ao"}, **gradient_keys([(0.0, (0.3, 0.3, 0.3)), (1.0, (1.0, 1.0, 1.0))]))
-    g.add("basecolor", "blend", {"source": "ao_color", "destination": "fuzz_colored"},
-          blendingmode=MULTIPLY, opacitymult=0.5)
+    ao_darken(g, "basecolor", "fuzz_colored", floor=0.3, opacitymult=0.5)
 
     # ---- roughness and metallic ---------------------------------------------------------------
     g.add("rough_inv", "invert_grayscale", {"source": "height"})

@@ -31,8 +31,10 @@ from blender_match.library.authoring import (
     OVERLAY,
     SOFT_LIGHT,
     SUBTRACT,
+    ao_darken,
+    color_over,
     constant_map,
-    gradient_keys,
+    gradient_over,
     set_material_outputs,
 )
 from blender_match.library.expressions import get, lerp, vector
@@ -83,22 +85,16 @@ def build() -> SbsGraph:
     # ---- colour ------------------------------------------------------------------------------
     g.add("dye", "uniform", outputcolor=(0.30, 0.15, 0.08, 1.0))
     g.bind("dye", "outputcolor", vector(get("leather_color", 3), 1.0).graph())
-    g.add("mottle", "gradient", {"input1": "fold_noise"}, **gradient_keys([
-        (0.0, (0.40, 0.40, 0.40)), (1.0, (0.60, 0.57, 0.54))]))
-    g.add("dye_mottled", "blend", {"source": "mottle", "destination": "dye"},
-          blendingmode=SOFT_LIGHT, opacitymult=0.7)
-    g.add("valley_tones", "gradient", {"input1": "height"}, **gradient_keys([
-        (0.0, (0.35, 0.33, 0.32)), (0.45, (0.78, 0.77, 0.76)), (1.0, (1.0, 1.0, 1.0))]))
-    g.add("dye_pooled", "blend", {"source": "valley_tones", "destination": "dye_mottled"},
-          blendingmode=MULTIPLY, opacitymult=0.8)
+    gradient_over(g, "dye_mottled", "mottle", "fold_noise", [(0.0, (0.40, 0.40, 0.40)), (1.0, (0.60, 0.57, 0.54))],
+                  "dye", blendingmode=SOFT_LIGHT, opacitymult=0.7)
+    gradient_over(g, "dye_pooled", "valley_tones", "height",
+                  [(0.0, (0.35, 0.33, 0.32)), (0.45, (0.78, 0.77, 0.76)), (1.0, (1.0, 1.0, 1.0))], "dye_mottled",
+                  blendingmode=MULTIPLY, opacitymult=0.8)
     g.add("tops", "histogram_scan", {"input_1": "height"}, position=0.3, contrast=0.3)
     g.bind("tops", "position", lerp(0.0, 0.6, get("wear")).graph())
-    g.add("rub_color", "uniform", outputcolor=(0.62, 0.52, 0.44, 1.0))
-    g.add("rubbed", "blend", {"source": "rub_color", "destination": "dye_pooled", "opacity": "tops"},
-          blendingmode=OVERLAY, opacitymult=0.5)
-    g.add("ao_color", "gradient", {"input1": "ao"}, **gradient_keys([(0.0, (0.3, 0.3, 0.3)), (1.0, (1.0, 1.0, 1.0))]))
-    g.add("basecolor", "blend", {"source": "ao_color", "destination": "rubbed"},
-          blendingmode=MULTIPLY, opacitymult=0.4)
+    color_over(g, "rubbed", "rub_color", (0.62, 0.52, 0.44, 1.0), "dye_pooled", mask="tops", blendingmode=OVERLAY,
+               opacitymult=0.5)
+    ao_darken(g, "basecolor", "rubbed", floor=0.3, opacitymult=0.4)
 
     # ---- roughness and metallic ---------------------------------------------------------------
     g.add("rough_base", "histogram_range", {"input": "height"}, range=0.15, position=0.55)

@@ -30,7 +30,8 @@ from blender_match.library.authoring import (
     OVERLAY,
     SCREEN,
     SOFT_LIGHT,
-    gradient_keys,
+    color_over,
+    gradient_over,
     set_material_outputs,
 )
 from blender_match.library.expressions import get, lerp, vector
@@ -76,17 +77,13 @@ def build() -> SbsGraph:
     # ---- colour ------------------------------------------------------------------------------
     g.add("paint", "uniform", outputcolor=(0.55, 0.06, 0.08, 1.0))
     g.bind("paint", "outputcolor", vector(get("paint_color", 3), 1.0).graph())
-    g.add("mottle", "gradient", {"input1": "undulation"}, **gradient_keys([
-        (0.0, (0.46, 0.46, 0.46)), (1.0, (0.54, 0.54, 0.54))]))
-    g.add("paint_mottled", "blend", {"source": "mottle", "destination": "paint"},
-          blendingmode=SOFT_LIGHT, opacitymult=0.6)
-    g.add("shimmer_tone", "gradient", {"input1": "shimmer"}, **gradient_keys([
-        (0.0, (0.8, 0.8, 0.8)), (0.5, (0.95, 0.95, 0.95)), (1.0, (1.0, 1.0, 1.0))]))
-    g.add("paint_shimmer", "blend", {"source": "shimmer_tone", "destination": "paint_mottled"},
-          blendingmode=MULTIPLY, opacitymult=0.8)
-    g.add("sparkle_tone", "uniform", outputcolor=(0.55, 0.55, 0.56, 1.0))
-    g.add("basecolor", "blend", {"source": "sparkle_tone", "destination": "paint_shimmer",
-                                 "opacity": "sparkles"}, blendingmode=SCREEN, opacitymult=0.4)
+    gradient_over(g, "paint_mottled", "mottle", "undulation", [(0.0, (0.46, 0.46, 0.46)), (1.0, (0.54, 0.54, 0.54))],
+                  "paint", blendingmode=SOFT_LIGHT, opacitymult=0.6)
+    gradient_over(g, "paint_shimmer", "shimmer_tone", "shimmer",
+                  [(0.0, (0.8, 0.8, 0.8)), (0.5, (0.95, 0.95, 0.95)), (1.0, (1.0, 1.0, 1.0))], "paint_mottled",
+                  blendingmode=MULTIPLY, opacitymult=0.8)
+    color_over(g, "basecolor", "sparkle_tone", (0.55, 0.55, 0.56, 1.0), "paint_shimmer", mask="sparkles",
+               blendingmode=SCREEN, opacitymult=0.4)
 
     # ---- metallic and roughness ---------------------------------------------------------------
     g.add("metal_base", "histogram_range", {"input": "shimmer"}, range=0.2, position=0.6)

@@ -34,8 +34,9 @@ from blender_match.library.authoring import (
     MULTIPLY,
     OVERLAY,
     SOFT_LIGHT,
+    ao_darken,
     constant_map,
-    gradient_keys,
+    gradient_over,
     set_material_outputs,
 )
 from blender_match.library.expressions import get, lerp, vector
@@ -104,30 +105,21 @@ def build() -> SbsGraph:
     g.add("glaze_hued", "blend", {"source": "tile_hues", "destination": "glaze_base"},
           blendingmode=SOFT_LIGHT, opacitymult=0.5)
     g.bind("glaze_hued", "opacitymult", lerp(0.0, 1.0, get("color_variation")).graph())
-    g.add("tile_tones", "gradient", {"input1": "tile_id"}, **gradient_keys([
-        (0.0, (0.32, 0.32, 0.32)), (1.0, (0.70, 0.70, 0.70))]))
-    g.add("glaze_varied", "blend", {"source": "tile_tones", "destination": "glaze_hued"},
-          blendingmode=SOFT_LIGHT, opacitymult=0.5)
+    gradient_over(g, "glaze_varied", "tile_tones", "tile_id", [(0.0, (0.32, 0.32, 0.32)), (1.0, (0.70, 0.70, 0.70))],
+                  "glaze_hued", blendingmode=SOFT_LIGHT, opacitymult=0.5)
     g.bind("glaze_varied", "opacitymult", lerp(0.1, 0.9, get("color_variation")).graph())
-    g.add("bevel_tones", "gradient", {"input1": "tiles"}, **gradient_keys([
-        (0.0, (0.55, 0.55, 0.55)), (0.7, (1.0, 1.0, 1.0))]))
-    g.add("glaze_pooled", "blend", {"source": "bevel_tones", "destination": "glaze_varied"},
-          blendingmode=MULTIPLY, opacitymult=0.5)
+    gradient_over(g, "glaze_pooled", "bevel_tones", "tiles", [(0.0, (0.55, 0.55, 0.55)), (0.7, (1.0, 1.0, 1.0))],
+                  "glaze_varied", blendingmode=MULTIPLY, opacitymult=0.5)
 
     g.add("grout_base", "uniform", outputcolor=(0.70, 0.68, 0.64, 1.0))
     g.bind("grout_base", "outputcolor",
            vector(get("grout_brightness"), get("grout_brightness") * 0.97,
                   get("grout_brightness") * 0.91, 1.0).graph())
-    g.add("sand_tones", "gradient", {"input1": "sand"}, **gradient_keys([
-        (0.0, (0.32, 0.32, 0.32)), (1.0, (0.64, 0.63, 0.60))]))
-    g.add("grout_speckled", "blend", {"source": "sand_tones", "destination": "grout_base"},
-          blendingmode=OVERLAY, opacitymult=0.6)
+    gradient_over(g, "grout_speckled", "sand_tones", "sand", [(0.0, (0.32, 0.32, 0.32)), (1.0, (0.64, 0.63, 0.60))],
+                  "grout_base", blendingmode=OVERLAY, opacitymult=0.6)
     g.add("surface", "blend", {"source": "glaze_pooled", "destination": "grout_speckled", "opacity": "tile_mask"},
           blendingmode=COPY, opacitymult=1.0)
-    g.add("ao_color", "gradient", {"input1": "ao"},
-          **gradient_keys([(0.0, (0.25, 0.25, 0.25)), (1.0, (1.0, 1.0, 1.0))]))
-    g.add("basecolor", "blend", {"source": "ao_color", "destination": "surface"},
-          blendingmode=MULTIPLY, opacitymult=0.5)
+    ao_darken(g, "basecolor", "surface", floor=0.25, opacitymult=0.5)
 
     # ---- roughness and metallic ---------------------------------------------------------------
     g.add("rough_glaze", "histogram_range", {"input": "waves"}, range=0.05, position=0.1)

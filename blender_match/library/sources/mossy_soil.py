@@ -32,7 +32,8 @@ from blender_match.library.authoring import (
     MAX,
     MULTIPLY,
     constant_map,
-    gradient_keys,
+    gradient_over,
+    keys_near,
     set_material_outputs,
 )
 from blender_match.library.expressions import const, get, lerp, vector
@@ -46,14 +47,6 @@ TWIG_TONES = [(0.0, (0.16, 0.12, 0.09)), (0.5, (0.30, 0.24, 0.18)), (1.0, (0.46,
 ROOT_TONES = [(0.0, (0.20, 0.11, 0.07)), (1.0, (0.42, 0.26, 0.16))]
 PEBBLE_TONES = [(0.0, (0.12, 0.11, 0.10)), (0.5, (0.22, 0.21, 0.19)), (1.0, (0.34, 0.32, 0.29))]
 AO_TONES = [(0.0, (0.2, 0.2, 0.2)), (1.0, (1.0, 1.0, 1.0))]
-
-
-def _near(stops, d: float) -> tuple:
-    """Per-key colour ranges of a gradient: each key's colour +- d (the palette keeps its hues)."""
-    cols = gradient_keys(stops)["colors"]
-    lo = [max(0.0, c - d) if i % 4 < 3 else 1.0 for i, c in enumerate(cols)]
-    hi = [min(1.0, c + d) if i % 4 < 3 else 1.0 for i, c in enumerate(cols)]
-    return lo, hi
 
 
 def build() -> SbsGraph:
@@ -136,28 +129,19 @@ def build() -> SbsGraph:
     # ---- colour --------------------------------------------------------------------------------
     g.add("soil_base", "uniform", outputcolor=(0.17, 0.12, 0.08, 1.0))
     g.bind("soil_base", "outputcolor", vector(get("soil_color", 3), 1.0).graph())
-    g.add("soil_tones", "gradient", {"input1": "soil_b"}, **gradient_keys(SOIL_TONES))
-    g.add("soil_col", "blend", {"source": "soil_tones", "destination": "soil_base"}, blendingmode=MULTIPLY)
+    gradient_over(g, "soil_col", "soil_tones", "soil_b", SOIL_TONES, "soil_base", blendingmode=MULTIPLY)
     g.add("moss_base", "uniform", outputcolor=(0.24, 0.33, 0.09, 1.0))
     g.bind("moss_base", "outputcolor", vector(get("moss_color", 3), 1.0).graph())
-    g.add("moss_tones", "gradient", {"input1": "tufts_b"}, **gradient_keys(MOSS_TONES))
-    g.add("moss_tinted", "blend", {"source": "moss_tones", "destination": "moss_base"}, blendingmode=MULTIPLY)
-    g.add("edge_tones", "gradient", {"input1": "moss_cushion"}, **gradient_keys(EDGE_TONES))
-    g.add("moss_col", "blend", {"source": "edge_tones", "destination": "moss_tinted"}, blendingmode=MULTIPLY)
+    gradient_over(g, "moss_tinted", "moss_tones", "tufts_b", MOSS_TONES, "moss_base", blendingmode=MULTIPLY)
+    gradient_over(g, "moss_col", "edge_tones", "moss_cushion", EDGE_TONES, "moss_tinted", blendingmode=MULTIPLY)
     g.add("with_moss", "blend", {"source": "moss_col", "destination": "soil_col", "opacity": "moss_mask"},
           blendingmode=COPY)
-    g.add("pebble_tones", "gradient", {"input1": "pebbles"}, **gradient_keys(PEBBLE_TONES))
-    g.add("with_pebbles", "blend", {"source": "pebble_tones", "destination": "with_moss", "opacity": "pebble_mask"},
-          blendingmode=COPY)
-    g.add("root_tones", "gradient", {"input1": "roots"}, **gradient_keys(ROOT_TONES))
-    g.add("with_roots", "blend", {"source": "root_tones", "destination": "with_pebbles", "opacity": "root_mask"},
-          blendingmode=COPY)
-    g.add("twig_tones", "gradient", {"input1": "twigs"}, **gradient_keys(TWIG_TONES))
-    g.add("with_twigs", "blend", {"source": "twig_tones", "destination": "with_roots", "opacity": "twig_mask"},
-          blendingmode=COPY)
-    g.add("ao_color", "gradient", {"input1": "ao"}, **gradient_keys(AO_TONES))
-    g.add("basecolor", "blend", {"source": "ao_color", "destination": "with_twigs"}, blendingmode=MULTIPLY,
-          opacitymult=0.5)
+    gradient_over(g, "with_pebbles", "pebble_tones", "pebbles", PEBBLE_TONES, "with_moss", mask="pebble_mask",
+                  blendingmode=COPY)
+    gradient_over(g, "with_roots", "root_tones", "roots", ROOT_TONES, "with_pebbles", mask="root_mask",
+                  blendingmode=COPY)
+    gradient_over(g, "with_twigs", "twig_tones", "twigs", TWIG_TONES, "with_roots", mask="twig_mask", blendingmode=COPY)
+    gradient_over(g, "basecolor", "ao_color", "ao", AO_TONES, "with_twigs", blendingmode=MULTIPLY, opacitymult=0.5)
 
     # ---- roughness and metallic ---------------------------------------------------------------
     g.add("rough_soil", "histogram_range", {"input": "crumbs"}, range=0.1, position=0.88)
@@ -193,12 +177,12 @@ SAMPLE_RANGES = {
     "twigs.intensity": (0.1, 0.8),
     "roots.intensity": (0.3, 1.2),
     "moss_cushion.intensity": (1.0, 4.0),
-    "soil_tones.colors": _near(SOIL_TONES, 0.03),
-    "moss_tones.colors": _near(MOSS_TONES, 0.03),
-    "edge_tones.colors": _near(EDGE_TONES, 0.03),
-    "twig_tones.colors": _near(TWIG_TONES, 0.03),
-    "root_tones.colors": _near(ROOT_TONES, 0.03),
-    "pebble_tones.colors": _near(PEBBLE_TONES, 0.03),
-    "ao_color.colors": _near(AO_TONES, 0.05),
+    "soil_tones.colors": keys_near(SOIL_TONES, 0.03),
+    "moss_tones.colors": keys_near(MOSS_TONES, 0.03),
+    "edge_tones.colors": keys_near(EDGE_TONES, 0.03),
+    "twig_tones.colors": keys_near(TWIG_TONES, 0.03),
+    "root_tones.colors": keys_near(ROOT_TONES, 0.03),
+    "pebble_tones.colors": keys_near(PEBBLE_TONES, 0.03),
+    "ao_color.colors": keys_near(AO_TONES, 0.05),
     "n_crumbs.intensity": (0.3, 1.5),
 }

@@ -11,7 +11,7 @@ Exposed parameters: ``paint_color`` (sRGB), ``paint_roughness``, ``metal_color``
 bare steel), ``metal_roughness``, ``wear`` (how much paint is gone), ``scratches`` (scratch
 amount), ``normal_intensity``.
 """
-from blender_match.library.authoring import set_material_outputs
+from blender_match.library.authoring import color_over, set_material_outputs
 from blender_match.library.expressions import get, vector
 from blender_match.translator.runtime import SbsGraph
 
@@ -53,9 +53,8 @@ def build() -> SbsGraph:
     g.add("paint_base", "uniform")
     g.bind("paint_base", "outputcolor", vector(get("paint_color", 3), 1.0).graph())
     g.add("paint_clouds", "clouds_2", seed=8, scale=2.0, disorder=0.1)
-    g.add("paint_tone", "uniform", outputcolor=[0.82, 0.83, 0.86, 1.0])
-    g.add("paint_color", "blend", {"source": "paint_tone", "destination": "paint_base", "opacity": "paint_clouds"},
-          blendingmode=3, opacitymult=0.35)
+    color_over(g, "paint_color", "paint_tone", [0.82, 0.83, 0.86, 1.0], "paint_base", mask="paint_clouds",
+               blendingmode=3, opacitymult=0.35)
     g.add("orange_peel", "perlin_noise", seed=2, scale=24.0, disorder=0.0)
 
     # bare metal

@@ -30,7 +30,9 @@ from blender_match.library.authoring import (
     MULTIPLY,
     OVERLAY,
     SUBTRACT,
-    gradient_keys,
+    color_over,
+    gradient_over,
+    normal_and_ao,
     set_material_outputs,
 )
 from blender_match.library.expressions import get, gray4, lerp, vector
@@ -80,19 +82,14 @@ def build() -> SbsGraph:
           blendingmode=ADD_SUB, opacitymult=0.04)
     g.add("height", "blend", {"source": "chips", "destination": "plate_relief"},
           blendingmode=SUBTRACT, opacitymult=0.03)
-    g.add("normal", "normal", {"input1": "height"}, intensity=2.0, inversedy=True)
-    g.add("ao", "ambient_occlusion_2", {"source": "height"}, height_depth=0.3, spreading=0.08)
+    normal_and_ao(g, "height", intensity=2.0, height_depth=0.3, spreading=0.08)
 
     # ---- colour -----------------------------------------------------------------------------------------------
     g.add("finish", "uniform", outputcolor=(0.62, 0.63, 0.65, 1.0))
     g.bind("finish", "outputcolor", vector(get("finish_color", 3), 1.0).graph())
-    g.add("brush_tone", "gradient", {"input1": "brush"}, **gradient_keys([
-        (0.0, (0.40, 0.40, 0.40)), (1.0, (0.60, 0.60, 0.60))]))
-    g.add("finish_brushed", "blend", {"source": "brush_tone", "destination": "finish"},
-          blendingmode=OVERLAY, opacitymult=0.6)
-    g.add("bare_steel", "uniform", outputcolor=(0.58, 0.58, 0.59, 1.0))
-    g.add("finish_chipped", "blend", {"source": "bare_steel", "destination": "finish_brushed",
-                                      "opacity": "chips"})
+    gradient_over(g, "finish_brushed", "brush_tone", "brush", [(0.0, (0.40, 0.40, 0.40)), (1.0, (0.60, 0.60, 0.60))],
+                  "finish", blendingmode=OVERLAY, opacitymult=0.6)
+    color_over(g, "finish_chipped", "bare_steel", (0.58, 0.58, 0.59, 1.0), "finish_brushed", mask="chips")
     g.add("backdrop", "uniform", outputcolor=(0.02, 0.02, 0.02, 1.0))
     g.add("basecolor", "blend", {"source": "finish_chipped", "destination": "backdrop",
                                  "opacity": "plate_mask"})

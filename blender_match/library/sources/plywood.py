@@ -31,12 +31,16 @@ from blender_match.library.authoring import (
     ADD,
     ADD_SUB,
     COPY,
-    MAX,
     MULTIPLY,
     SOFT_LIGHT,
     SUBTRACT,
+    color_over,
     constant_map,
+    fold,
     gradient_keys,
+    gradient_over,
+    keys_near,
+    rgba_near,
     set_material_outputs,
 )
 from blender_match.library.expressions import const, get, lerp, vector
@@ -52,28 +56,6 @@ CLOUD_TONES = [(0.0, (0.45, 0.45, 0.45)), (1.0, (0.56, 0.55, 0.53))]
 KNOT_COLOR = (0.30, 0.18, 0.09)
 HALO_COLOR = (0.62, 0.45, 0.30)
 PATCH_TONE = (0.60, 0.59, 0.57)
-
-
-def _keys_near(stops, d):
-    """A tight (lo, hi) sampling range around a gradient's key colours (alpha kept at 1): the
-    sampler draws each channel independently, and a wide range would tint the tones."""
-    lo = [c for _, rgb in stops for c in (*(max(0.0, v - d) for v in rgb), 1.0)]
-    hi = [c for _, rgb in stops for c in (*(min(1.0, v + d) for v in rgb), 1.0)]
-    return lo, hi
-
-
-def _rgba_near(rgb, d):
-    return [max(0.0, v - d) for v in rgb] + [1.0], [min(1.0, v + d) for v in rgb] + [1.0]
-
-
-def _fold(g: SbsGraph, src: str, i: int) -> str:
-    """|2x - 1| of ``src`` (max of two histogram scans): doubles the periods of a field."""
-    g.add(f"fold{i}_inv", "invert_grayscale", {"source": src})
-    g.add(f"fold{i}_hi", "histogram_scan", {"input_1": src}, position=0.25, contrast=0.0)
-    g.add(f"fold{i}_lo", "histogram_scan", {"input_1": f"fold{i}_inv"}, position=0.25, contrast=0.0)
-    g.add(f"fold{i}", "blend", {"source": f"fold{i}_lo", "destination": f"fold{i}_hi"},
-          blendingmode=MAX, opacitymult=1.0)
-    return f"fold{i}"
 
 
 def build() -> SbsGraph:
@@ -93,7 +75,7 @@ def build() -> SbsGraph:
     g.bind("ring_wavy", "intensity", lerp(0.0, 5.0, get("waviness")).graph())
     folded = "ring_wavy"
     for i in range(FOLDS):
-        folded = _fold(g, folded, i)
+        folded = fold(g, folded, i)
     g.add("bands", "gradient", {"input1": folded}, colorswitch=False, **gradient_keys(BAND_PROFILE))
     g.add("late_mask", "invert_grayscale", {"source": "bands"})
 
@@ -122,22 +104,16 @@ def build() -> SbsGraph:
     g.add("banded", "blend", {"source": "latewood", "destination": "earlywood", "opacity": "late_mask"},
           blendingmode=COPY, opacitymult=0.55)
     g.bind("banded", "opacitymult", lerp(0.05, 1.0, get("grain_contrast")).graph())
-    g.add("fibre_tones", "gradient", {"input1": "fibres"}, **gradient_keys(FIBRE_TONES))
-    g.add("fibred", "blend", {"source": "fibre_tones", "destination": "banded"},
-          blendingmode=SOFT_LIGHT, opacitymult=0.7)
+    gradient_over(g, "fibred", "fibre_tones", "fibres", FIBRE_TONES, "banded", blendingmode=SOFT_LIGHT, opacitymult=0.7)
     g.add("clouds", "clouds_2", seed=97, scale=3.0)
-    g.add("cloud_tones", "gradient", {"input1": "clouds"}, **gradient_keys(CLOUD_TONES))
-    g.add("clouded", "blend", {"source": "cloud_tones", "destination": "fibred"},
-          blendingmode=SOFT_LIGHT, opacitymult=0.5)
-    g.add("patch_tone", "uniform", outputcolor=(*PATCH_TONE, 1.0))
-    g.add("patched", "blend", {"source": "patch_tone", "destination": "clouded", "opacity": "patches"},
-          blendingmode=SOFT_LIGHT, opacitymult=0.7)
-    g.add("halo_color", "uniform", outputcolor=(*HALO_COLOR, 1.0))
-    g.add("haloed", "blend", {"source": "halo_color", "destination": "patched", "opacity": "knot_halo"},
-          blendingmode=MULTIPLY, opacitymult=0.6)
-    g.add("knot_color", "uniform", outputcolor=(*KNOT_COLOR, 1.0))
-    g.add("basecolor", "blend", {"source": "knot_color", "destination": "haloed", "opacity": "knot_core"},
-          blendingmode=COPY, opacitymult=0.9)
+    gradient_over(g, "clouded", "cloud_tones", "clouds", CLOUD_TONES, "fibred", blendingmode=SOFT_LIGHT,
+                  opacitymult=0.5)
+    color_over(g, "patched", "patch_tone", (*PATCH_TONE, 1.0), "clouded", mask="patches", blendingmode=SOFT_LIGHT,
+               opacitymult=0.7)
+    color_over(g, "haloed", "halo_color", (*HALO_COLOR, 1.0), "patched", mask="knot_halo", blendingmode=MULTIPLY,
+               opacitymult=0.6)
+    color_over(g, "basecolor", "knot_color", (*KNOT_COLOR, 1.0), "haloed", mask="knot_core", blendingmode=COPY,
+               opacitymult=0.9)
 
     # ---- height and normal -------------------------------------------------------------------
     g.add("h_bands", "histogram_range", {"input": "late_mask"}, range=0.1, position=0.5)
@@ -177,11 +153,11 @@ SAMPLE_RANGES = {
     "normal_raised.intensity": (0.1, 0.6),
     "knot_halo.intensity": (3.0, 9.0),
     "bands.positions": ([0.0, 0.03, 0.15, 1.0], [0.0, 0.1, 0.35, 1.0]),
-    "fibre_tones.colors": _keys_near(FIBRE_TONES, 0.03),
-    "cloud_tones.colors": _keys_near(CLOUD_TONES, 0.03),
-    "knot_color.outputcolor": _rgba_near(KNOT_COLOR, 0.05),
-    "halo_color.outputcolor": _rgba_near(HALO_COLOR, 0.04),
-    "patch_tone.outputcolor": _rgba_near(PATCH_TONE, 0.03),
+    "fibre_tones.colors": keys_near(FIBRE_TONES, 0.03),
+    "cloud_tones.colors": keys_near(CLOUD_TONES, 0.03),
+    "knot_color.outputcolor": rgba_near(KNOT_COLOR, 0.05),
+    "halo_color.outputcolor": rgba_near(HALO_COLOR, 0.04),
+    "patch_tone.outputcolor": rgba_near(PATCH_TONE, 0.03),
     # the folds are exact arithmetic (|2x - 1|): their scans and max blends stay pinned
     **{f"fold{i}_{side}.{param}": (value, value) for i in range(FOLDS) for side in ("hi", "lo")
        for param, value in (("position", 0.25), ("contrast", 0.0))},

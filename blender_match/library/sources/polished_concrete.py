@@ -39,8 +39,12 @@ from blender_match.library.authoring import (
     OVERLAY,
     SOFT_LIGHT,
     SUBTRACT,
+    color_over,
     constant_map,
     gradient_keys,
+    gradient_over,
+    keys_near,
+    rgba_near,
     set_material_outputs,
 )
 from blender_match.library.expressions import get, lerp, vector
@@ -58,17 +62,6 @@ STONE_GRAIN = [(0.0, (0.44, 0.44, 0.44)), (1.0, (0.56, 0.56, 0.56))]
 TROWEL_TONE = (0.60, 0.60, 0.60)
 SPECK_COLOR = (0.22, 0.21, 0.20)
 PINHOLE_COLOR = (0.18, 0.17, 0.16)
-
-
-def _keys_near(stops, d):
-    """A tight (lo, hi) sampling range around a gradient's key colours (alpha kept at 1)."""
-    lo = [c for _, rgb in stops for c in (*(max(0.0, v - d) for v in rgb), 1.0)]
-    hi = [c for _, rgb in stops for c in (*(min(1.0, v + d) for v in rgb), 1.0)]
-    return lo, hi
-
-
-def _rgba_near(rgb, d):
-    return [max(0.0, v - d) for v in rgb] + [1.0], [min(1.0, v + d) for v in rgb] + [1.0]
 
 
 def build() -> SbsGraph:
@@ -112,32 +105,26 @@ def build() -> SbsGraph:
     g.bind("paste", "outputcolor", vector(get("concrete_color", 3), 1.0).graph())
     g.add("paste_muted", "hsl", {"input1": "paste"}, hue=0.5, saturation=0.38, luminosity=0.5)
     g.add("clouds", "clouds_2", seed=77, scale=2.0)
-    g.add("cloud_tones", "gradient", {"input1": "clouds"}, **gradient_keys(CLOUD_TONES))
-    g.add("paste_clouded", "blend", {"source": "cloud_tones", "destination": "paste_muted"},
-          blendingmode=SOFT_LIGHT, opacitymult=0.7)
-    g.add("sand_tones", "gradient", {"input1": "sand"}, **gradient_keys(SAND_TONES))
-    g.add("paste_sandy", "blend", {"source": "sand_tones", "destination": "paste_clouded"},
-          blendingmode=OVERLAY, opacitymult=0.5)
-    g.add("trowel_tone", "uniform", outputcolor=(*TROWEL_TONE, 1.0))
-    g.add("paste_troweled", "blend", {"source": "trowel_tone", "destination": "paste_sandy",
-                                      "opacity": "trowel_soft"}, blendingmode=SOFT_LIGHT, opacitymult=0.4)
+    gradient_over(g, "paste_clouded", "cloud_tones", "clouds", CLOUD_TONES, "paste_muted", blendingmode=SOFT_LIGHT,
+                  opacitymult=0.7)
+    gradient_over(g, "paste_sandy", "sand_tones", "sand", SAND_TONES, "paste_clouded", blendingmode=OVERLAY,
+                  opacitymult=0.5)
+    color_over(g, "paste_troweled", "trowel_tone", (*TROWEL_TONE, 1.0), "paste_sandy", mask="trowel_soft",
+               blendingmode=SOFT_LIGHT, opacitymult=0.4)
     g.bind("paste_troweled", "opacitymult", lerp(0.0, 0.9, get("trowel_marks")).graph())
 
     g.add("stone_colors", "gradient", {"input1": "stones_warp"}, **gradient_keys(STONE_COLORS))
-    g.add("stone_grain", "gradient", {"input1": "grain"}, **gradient_keys(STONE_GRAIN))
-    g.add("stones_grained", "blend", {"source": "stone_grain", "destination": "stone_colors"},
-          blendingmode=OVERLAY, opacitymult=0.5)
+    gradient_over(g, "stones_grained", "stone_grain", "grain", STONE_GRAIN, "stone_colors", blendingmode=OVERLAY,
+                  opacitymult=0.5)
     g.add("stones_softened", "blend", {"source": "paste_clouded", "destination": "stones_grained"},
           blendingmode=COPY, opacitymult=0.4)
     g.bind("stones_softened", "opacitymult", lerp(0.85, 0.0, get("aggregate_contrast")).graph())
     g.add("with_stones", "blend", {"source": "stones_softened", "destination": "paste_troweled",
                                    "opacity": "stone_mask_soft"}, blendingmode=COPY, opacitymult=1.0)
-    g.add("speck_color", "uniform", outputcolor=(*SPECK_COLOR, 1.0))
-    g.add("specked", "blend", {"source": "speck_color", "destination": "with_stones", "opacity": "dark_specks"},
-          blendingmode=COPY, opacitymult=0.7)
-    g.add("pinhole_color", "uniform", outputcolor=(*PINHOLE_COLOR, 1.0))
-    g.add("basecolor", "blend", {"source": "pinhole_color", "destination": "specked", "opacity": "pinholes_soft"},
-          blendingmode=COPY, opacitymult=0.8)
+    color_over(g, "specked", "speck_color", (*SPECK_COLOR, 1.0), "with_stones", mask="dark_specks", blendingmode=COPY,
+               opacitymult=0.7)
+    color_over(g, "basecolor", "pinhole_color", (*PINHOLE_COLOR, 1.0), "specked", mask="pinholes_soft",
+               blendingmode=COPY, opacitymult=0.8)
 
     # ---- height and normal -------------------------------------------------------------------
     g.add("undulation", "blur_hq_grayscale", {"source": "clouds"}, intensity=6.0)
@@ -191,11 +178,11 @@ SAMPLE_RANGES = {
     "edge_noise.scale": (8.0, 16.0),
     "clouds.scale": (1.5, 4.0),
     "swirl.scale": (1.5, 3.0),
-    "cloud_tones.colors": _keys_near(CLOUD_TONES, 0.03),
-    "sand_tones.colors": _keys_near(SAND_TONES, 0.03),
-    "stone_colors.colors": _keys_near(STONE_COLORS, 0.05),
-    "stone_grain.colors": _keys_near(STONE_GRAIN, 0.03),
-    "trowel_tone.outputcolor": _rgba_near(TROWEL_TONE, 0.05),
-    "speck_color.outputcolor": _rgba_near(SPECK_COLOR, 0.06),
-    "pinhole_color.outputcolor": _rgba_near(PINHOLE_COLOR, 0.05),
+    "cloud_tones.colors": keys_near(CLOUD_TONES, 0.03),
+    "sand_tones.colors": keys_near(SAND_TONES, 0.03),
+    "stone_colors.colors": keys_near(STONE_COLORS, 0.05),
+    "stone_grain.colors": keys_near(STONE_GRAIN, 0.03),
+    "trowel_tone.outputcolor": rgba_near(TROWEL_TONE, 0.05),
+    "speck_color.outputcolor": rgba_near(SPECK_COLOR, 0.06),
+    "pinhole_color.outputcolor": rgba_near(PINHOLE_COLOR, 0.05),
 }

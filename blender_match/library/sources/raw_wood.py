@@ -31,8 +31,9 @@ from blender_match.library.authoring import (
     MULTIPLY,
     SOFT_LIGHT,
     SUBTRACT,
+    color_over,
     constant_map,
-    gradient_keys,
+    gradient_over,
     set_material_outputs,
 )
 from blender_match.library.expressions import const, get, lerp, vector
@@ -92,32 +93,23 @@ def build() -> SbsGraph:
     g.add("grain_color", "blend", {"source": "latewood", "destination": "earlywood", "opacity": "rings"},
           blendingmode=COPY, opacitymult=0.6)
     g.bind("grain_color", "opacitymult", get("ring_contrast").graph())
-    g.add("fibre_tone", "gradient", {"input1": "fibres_warp"}, **gradient_keys([
-        (0.0, (0.44, 0.43, 0.42)), (1.0, (0.56, 0.55, 0.53))]))
-    g.add("fibred", "blend", {"source": "fibre_tone", "destination": "grain_color"},
-          blendingmode=SOFT_LIGHT, opacitymult=0.7)
+    gradient_over(g, "fibred", "fibre_tone", "fibres_warp", [(0.0, (0.44, 0.43, 0.42)), (1.0, (0.56, 0.55, 0.53))],
+                  "grain_color", blendingmode=SOFT_LIGHT, opacitymult=0.7)
     g.add("clouds", "clouds_1", seed=65, scale=3.0)
-    g.add("cloud_tone", "gradient", {"input1": "clouds"}, **gradient_keys([
-        (0.0, (0.42, 0.41, 0.40)), (1.0, (0.58, 0.56, 0.52))]))
-    g.add("clouded", "blend", {"source": "cloud_tone", "destination": "fibred"},
-          blendingmode=SOFT_LIGHT, opacitymult=0.6)
-    g.add("halo_color", "uniform", outputcolor=(0.55, 0.36, 0.20, 1.0))
-    g.add("haloed", "blend", {"source": "halo_color", "destination": "clouded", "opacity": "knot_halo"},
-          blendingmode=MULTIPLY, opacitymult=0.35)
-    g.add("knot_color", "uniform", outputcolor=(0.30, 0.15, 0.07, 1.0))
-    g.add("knotted", "blend", {"source": "knot_color", "destination": "haloed", "opacity": "knot_core"},
-          blendingmode=COPY, opacitymult=0.9)
-    g.add("saw_tone", "gradient", {"input1": "saw_turn"}, **gradient_keys([
-        (0.0, (0.46, 0.46, 0.46)), (1.0, (0.54, 0.54, 0.54))]))
-    g.add("sawn", "blend", {"source": "saw_tone", "destination": "knotted"},
-          blendingmode=SOFT_LIGHT, opacitymult=0.3)
+    gradient_over(g, "clouded", "cloud_tone", "clouds", [(0.0, (0.42, 0.41, 0.40)), (1.0, (0.58, 0.56, 0.52))],
+                  "fibred", blendingmode=SOFT_LIGHT, opacitymult=0.6)
+    color_over(g, "haloed", "halo_color", (0.55, 0.36, 0.20, 1.0), "clouded", mask="knot_halo", blendingmode=MULTIPLY,
+               opacitymult=0.35)
+    color_over(g, "knotted", "knot_color", (0.30, 0.15, 0.07, 1.0), "haloed", mask="knot_core", blendingmode=COPY,
+               opacitymult=0.9)
+    gradient_over(g, "sawn", "saw_tone", "saw_turn", [(0.0, (0.46, 0.46, 0.46)), (1.0, (0.54, 0.54, 0.54))], "knotted",
+                  blendingmode=SOFT_LIGHT, opacitymult=0.3)
     g.add("weather_streaks", "blend", {"source": "fibres_warp", "destination": "clouds"},
           blendingmode=MULTIPLY, opacitymult=0.6)
     g.add("weather_mask", "histogram_scan", {"input_1": "weather_streaks"}, position=0.2, contrast=0.3)
     g.bind("weather_mask", "position", lerp(0.0, 0.8, get("weathering")).graph())
-    g.add("weather_color", "uniform", outputcolor=(0.52, 0.50, 0.47, 1.0))
-    g.add("basecolor", "blend", {"source": "weather_color", "destination": "sawn", "opacity": "weather_mask"},
-          blendingmode=COPY, opacitymult=0.75)
+    color_over(g, "basecolor", "weather_color", (0.52, 0.50, 0.47, 1.0), "sawn", mask="weather_mask", blendingmode=COPY,
+               opacitymult=0.75)
 
     # ---- roughness and metallic ---------------------------------------------------------------
     g.add("rough_base", "histogram_range", {"input": "raised"}, range=0.12, position=0.7)

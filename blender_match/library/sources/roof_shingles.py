@@ -38,8 +38,9 @@ from blender_match.library.authoring import (
     OVERLAY,
     SOFT_LIGHT,
     SUBTRACT,
+    ao_darken,
     constant_map,
-    gradient_keys,
+    gradient_over,
     set_material_outputs,
 )
 from blender_match.library.expressions import get, lerp, vector
@@ -101,31 +102,22 @@ def build() -> SbsGraph:
     # ---- colour ------------------------------------------------------------------------------
     g.add("base", "uniform", outputcolor=(0.24, 0.25, 0.28, 1.0))
     g.bind("base", "outputcolor", vector(get("shingle_color", 3), 1.0).graph())
-    g.add("shingle_tones", "gradient", {"input1": "id_warp"}, **gradient_keys([
-        (0.0, (0.30, 0.30, 0.31)), (0.4, (0.47, 0.47, 0.48)), (1.0, (0.68, 0.66, 0.62))]))
-    g.add("varied", "blend", {"source": "shingle_tones", "destination": "base"},
-          blendingmode=SOFT_LIGHT, opacitymult=0.5)
+    gradient_over(g, "varied", "shingle_tones", "id_warp",
+                  [(0.0, (0.30, 0.30, 0.31)), (0.4, (0.47, 0.47, 0.48)), (1.0, (0.68, 0.66, 0.62))], "base",
+                  blendingmode=SOFT_LIGHT, opacitymult=0.5)
     g.bind("varied", "opacitymult", get("color_variation").graph())
     g.add("clouds", "clouds_2", seed=66, scale=3.0)
-    g.add("cloud_tones", "gradient", {"input1": "clouds"}, **gradient_keys([
-        (0.0, (0.40, 0.40, 0.40)), (1.0, (0.60, 0.59, 0.57))]))
-    g.add("clouded", "blend", {"source": "cloud_tones", "destination": "varied"},
-          blendingmode=SOFT_LIGHT, opacitymult=0.6)
-    g.add("grit_tones", "gradient", {"input1": "surface"}, **gradient_keys([
-        (0.0, (0.30, 0.30, 0.30)), (1.0, (0.68, 0.68, 0.66))]))
-    g.add("gritted", "blend", {"source": "grit_tones", "destination": "clouded"},
-          blendingmode=OVERLAY, opacitymult=0.3)
+    gradient_over(g, "clouded", "cloud_tones", "clouds", [(0.0, (0.40, 0.40, 0.40)), (1.0, (0.60, 0.59, 0.57))],
+                  "varied", blendingmode=SOFT_LIGHT, opacitymult=0.6)
+    gradient_over(g, "gritted", "grit_tones", "surface", [(0.0, (0.30, 0.30, 0.30)), (1.0, (0.68, 0.68, 0.66))],
+                  "clouded", blendingmode=OVERLAY, opacitymult=0.3)
     g.bind("gritted", "opacitymult", lerp(0.05, 0.6, get("grit")).graph())
     # the shadow band: the low (top) part of each ramp sits under the row above
-    g.add("shadow_band", "gradient", {"input1": "ramps_soft"}, **gradient_keys([
-        (0.0, (0.15, 0.15, 0.15)), (0.12, (0.55, 0.55, 0.55)), (0.35, (1.0, 1.0, 1.0))]))
-    g.add("shadowed", "blend", {"source": "shadow_band", "destination": "gritted"},
-          blendingmode=MULTIPLY, opacitymult=0.6)
+    gradient_over(g, "shadowed", "shadow_band", "ramps_soft",
+                  [(0.0, (0.15, 0.15, 0.15)), (0.12, (0.55, 0.55, 0.55)), (0.35, (1.0, 1.0, 1.0))], "gritted",
+                  blendingmode=MULTIPLY, opacitymult=0.6)
     g.bind("shadowed", "opacitymult", lerp(0.2, 0.9, get("row_depth")).graph())
-    g.add("ao_color", "gradient", {"input1": "ao"},
-          **gradient_keys([(0.0, (0.2, 0.2, 0.2)), (1.0, (1.0, 1.0, 1.0))]))
-    g.add("basecolor", "blend", {"source": "ao_color", "destination": "shadowed"},
-          blendingmode=MULTIPLY, opacitymult=0.5)
+    ao_darken(g, "basecolor", "shadowed", floor=0.2, opacitymult=0.5)
 
     # ---- roughness and metallic ---------------------------------------------------------------
     g.add("rough_base", "histogram_range", {"input": "surface"}, range=0.12, position=0.75)

@@ -19,7 +19,7 @@ Exposed parameters
 """
 from __future__ import annotations
 
-from blender_match.library.authoring import constant_map
+from blender_match.library.authoring import color_over, constant_map
 from blender_match.library.expressions import clamp, get, lerp, vector
 from blender_match.translator.runtime import SbsGraph
 
@@ -73,15 +73,13 @@ def build() -> SbsGraph:
     g.add("tint", "uniform", outputcolor=[0.78, 0.74, 0.68, 1.0])
     g.bind("tint", "outputcolor", vector(get("color", 3), 1.0).graph())
     g.add("col_base", "blend", {"source": "palette", "destination": "tint"}, blendingmode=3)
-    g.add("speck_color", "uniform", outputcolor=[0.12, 0.11, 0.10, 1.0])
-    g.add("col_speck", "blend", {"source": "speck_color", "destination": "col_base", "opacity": "speck_soft"},
-          blendingmode=0, opacitymult=0.7)
+    color_over(g, "col_speck", "speck_color", [0.12, 0.11, 0.10, 1.0], "col_base", mask="speck_soft", blendingmode=0,
+               opacitymult=0.7)
     g.add("crevice_src", "invert_grayscale", {"source": "height"})
     g.add("crevices", "histogram_scan", {"input_1": "crevice_src"}, position=0.4, contrast=0.3)
     g.bind("crevices", "position", lerp(0.03, 0.55, weathering).graph())
-    g.add("dirt_color", "uniform", outputcolor=[0.30, 0.25, 0.19, 1.0])
-    g.add("col_out", "blend", {"source": "dirt_color", "destination": "col_speck", "opacity": "crevices"},
-          blendingmode=0, opacitymult=0.55)
+    color_over(g, "col_out", "dirt_color", [0.30, 0.25, 0.19, 1.0], "col_speck", mask="crevices", blendingmode=0,
+               opacitymult=0.55)
     g.set_output("basecolor", "col_out")
 
     # ---- roughness ------------------------------------------------------------------------------

@@ -33,8 +33,9 @@ from blender_match.library.authoring import (
     SCREEN,
     SOFT_LIGHT,
     SUBTRACT,
+    ao_darken,
     constant_map,
-    gradient_keys,
+    gradient_over,
     set_material_outputs,
 )
 from blender_match.library.expressions import get, lerp, vector
@@ -90,14 +91,11 @@ def build() -> SbsGraph:
     # ---- colour ------------------------------------------------------------------------------
     g.add("base", "uniform", outputcolor=(0.035, 0.035, 0.037, 1.0))
     g.bind("base", "outputcolor", vector(get("rubber_color", 3), 1.0).graph())
-    g.add("mottle", "gradient", {"input1": "undulation"}, **gradient_keys([
-        (0.0, (0.42, 0.42, 0.42)), (1.0, (0.58, 0.58, 0.58))]))
-    g.add("mottled", "blend", {"source": "mottle", "destination": "base"},
-          blendingmode=SOFT_LIGHT, opacitymult=0.6)
-    g.add("grain_tones", "gradient", {"input1": "grain_soft"}, **gradient_keys([
-        (0.0, (0.40, 0.40, 0.40)), (1.0, (0.60, 0.60, 0.60))]))
-    g.add("grain_colored", "blend", {"source": "grain_tones", "destination": "mottled"},
-          blendingmode=SOFT_LIGHT, opacitymult=0.6)
+    gradient_over(g, "mottled", "mottle", "undulation", [(0.0, (0.42, 0.42, 0.42)), (1.0, (0.58, 0.58, 0.58))], "base",
+                  blendingmode=SOFT_LIGHT, opacitymult=0.6)
+    gradient_over(g, "grain_colored", "grain_tones", "grain_soft",
+                  [(0.0, (0.40, 0.40, 0.40)), (1.0, (0.60, 0.60, 0.60))], "mottled", blendingmode=SOFT_LIGHT,
+                  opacitymult=0.6)
     # dust: pale gray, trapped in pores and at the coin feet, rubbed onto the coin tops
     g.add("dust_color", "uniform", outputcolor=(0.42, 0.41, 0.39, 1.0))
     g.add("dust_places", "blend", {"source": "coin_feet", "destination": "pores"},
@@ -111,10 +109,7 @@ def build() -> SbsGraph:
     g.add("worn", "blend", {"source": "dust_color", "destination": "dusty", "opacity": "coin_tops"},
           blendingmode=SCREEN, opacitymult=0.1)
     g.bind("worn", "opacitymult", lerp(0.0, 0.25, get("dust")).graph())
-    g.add("ao_color", "gradient", {"input1": "ao"},
-          **gradient_keys([(0.0, (0.3, 0.3, 0.3)), (1.0, (1.0, 1.0, 1.0))]))
-    g.add("basecolor", "blend", {"source": "ao_color", "destination": "worn"},
-          blendingmode=MULTIPLY, opacitymult=0.5)
+    ao_darken(g, "basecolor", "worn", floor=0.3, opacitymult=0.5)
 
     # ---- roughness and metallic ---------------------------------------------------------------
     g.add("rough_base", "histogram_range", {"input": "grain_soft"}, range=0.08, position=0.8)

@@ -11,7 +11,7 @@ Exposed parameters: ``rust_amount``, ``rust_color`` (sRGB tint multiplied with t
 gradient), ``rust_roughness``, ``metal_color`` (sRGB), ``metal_roughness``, ``pitting``,
 ``normal_intensity``.
 """
-from blender_match.library.authoring import set_material_outputs
+from blender_match.library.authoring import color_over, set_material_outputs
 from blender_match.library.expressions import get, vector
 from blender_match.translator.runtime import SbsGraph
 
@@ -49,17 +49,15 @@ def build() -> SbsGraph:
     g.add("rust_tint", "uniform")
     g.bind("rust_tint", "outputcolor", vector(get("rust_color", 3), 1.0).graph())
     g.add("rust_color", "blend", {"source": "rust_tint", "destination": "rust_gradient"}, blendingmode=3)
-    g.add("rust_dark_edges", "uniform", outputcolor=[0.45, 0.36, 0.3, 1.0])
-    g.add("rust_color_edges", "blend", {"source": "rust_dark_edges", "destination": "rust_color",
-                                        "opacity": "edge_noise"}, blendingmode=3, opacitymult=0.4)
+    color_over(g, "rust_color_edges", "rust_dark_edges", [0.45, 0.36, 0.3, 1.0], "rust_color", mask="edge_noise",
+               blendingmode=3, opacitymult=0.4)
 
     # steel
     g.add("steel_noise", "clouds_3", seed=3, scale=4.0)
     g.add("steel_base", "uniform")
     g.bind("steel_base", "outputcolor", vector(get("metal_color", 3), 1.0).graph())
-    g.add("steel_tone", "uniform", outputcolor=[0.8, 0.8, 0.82, 1.0])
-    g.add("steel_color", "blend", {"source": "steel_tone", "destination": "steel_base", "opacity": "steel_noise"},
-          blendingmode=3, opacitymult=0.5)
+    color_over(g, "steel_color", "steel_tone", [0.8, 0.8, 0.82, 1.0], "steel_base", mask="steel_noise", blendingmode=3,
+               opacitymult=0.5)
     g.add("pits_spots", "bnw_spots_2", seed=40, scale=8.0)
     g.add("pits", "histogram_scan", {"input_1": "pits_spots"}, contrast=0.7)
     g.bind("pits", "position", (0.2 * get("pitting")).graph())

@@ -29,7 +29,8 @@ from blender_match.library.authoring import (
     MULTIPLY,
     OVERLAY,
     constant_map,
-    gradient_keys,
+    gradient_over,
+    keys_near,
     set_material_outputs,
 )
 from blender_match.library.expressions import const, get, lerp, vector
@@ -40,14 +41,6 @@ GRAIN_TONES = [(0.0, (0.12, 0.12, 0.12)), (0.12, (0.36, 0.35, 0.34)), (0.3, (0.5
 CLUSTER_TONES = [(0.0, (0.44, 0.44, 0.44)), (1.0, (0.56, 0.56, 0.56))]
 RIPPLE_TONES = [(0.0, (0.80, 0.80, 0.80)), (0.5, (0.92, 0.92, 0.92)), (1.0, (1.0, 1.0, 1.0))]
 AO_TONES = [(0.0, (0.35, 0.35, 0.35)), (1.0, (1.0, 1.0, 1.0))]
-
-
-def _near(stops, d: float) -> tuple:
-    """Per-key colour ranges of a gradient: each key's colour +- d (gray keys stay gray enough)."""
-    cols = gradient_keys(stops)["colors"]
-    lo = [max(0.0, c - d) if i % 4 < 3 else 1.0 for i, c in enumerate(cols)]
-    hi = [min(1.0, c + d) if i % 4 < 3 else 1.0 for i, c in enumerate(cols)]
-    return lo, hi
 
 
 def build() -> SbsGraph:
@@ -101,20 +94,15 @@ def build() -> SbsGraph:
     g.add("sand_base", "uniform", outputcolor=(0.68, 0.60, 0.46, 1.0))
     g.bind("sand_base", "outputcolor",
            vector(get("sand_color", 3) * get("brightness"), 1.0).graph())
-    g.add("grain_tones", "gradient", {"input1": "grains"}, **gradient_keys(GRAIN_TONES))
-    g.add("sand_grains", "blend", {"source": "grain_tones", "destination": "sand_base"}, blendingmode=OVERLAY,
-          opacitymult=0.5)
+    gradient_over(g, "sand_grains", "grain_tones", "grains", GRAIN_TONES, "sand_base", blendingmode=OVERLAY,
+                  opacitymult=0.5)
     g.bind("sand_grains", "opacitymult", lerp(0.15, 1.0, grain).graph())
-    g.add("cluster_tones", "gradient", {"input1": "clusters"}, **gradient_keys(CLUSTER_TONES))
-    g.add("sand_clusters", "blend", {"source": "cluster_tones", "destination": "sand_grains"},
-          blendingmode=OVERLAY, opacitymult=0.6)
-    g.add("ripple_tones", "gradient", {"input1": "ripple_h"}, **gradient_keys(RIPPLE_TONES))
-    g.add("sand_ripples", "blend", {"source": "ripple_tones", "destination": "sand_clusters"},
-          blendingmode=MULTIPLY, opacitymult=0.5)
+    gradient_over(g, "sand_clusters", "cluster_tones", "clusters", CLUSTER_TONES, "sand_grains", blendingmode=OVERLAY,
+                  opacitymult=0.6)
+    gradient_over(g, "sand_ripples", "ripple_tones", "ripple_h", RIPPLE_TONES, "sand_clusters", blendingmode=MULTIPLY,
+                  opacitymult=0.5)
     g.bind("sand_ripples", "opacitymult", lerp(0.0, 0.8, ripples).graph())
-    g.add("ao_color", "gradient", {"input1": "ao"}, **gradient_keys(AO_TONES))
-    g.add("basecolor", "blend", {"source": "ao_color", "destination": "sand_ripples"}, blendingmode=MULTIPLY,
-          opacitymult=0.3)
+    gradient_over(g, "basecolor", "ao_color", "ao", AO_TONES, "sand_ripples", blendingmode=MULTIPLY, opacitymult=0.3)
 
     # ---- roughness and metallic ---------------------------------------------------------------
     g.add("rough_base", "histogram_range", {"input": "grains"}, range=0.1, position=0.88)
@@ -145,9 +133,9 @@ SAMPLE_RANGES = {
     "crests_soft.intensity": (1.5, 4.0),
     "field_mask.position": (0.4, 0.8),
     "h_undulate.opacitymult": (0.0, 0.3),
-    "grain_tones.colors": _near(GRAIN_TONES, 0.03),
-    "ripple_tones.colors": _near(RIPPLE_TONES, 0.03),
-    "ao_color.colors": _near(AO_TONES, 0.05),
-    "cluster_tones.colors": _near(CLUSTER_TONES, 0.02),
+    "grain_tones.colors": keys_near(GRAIN_TONES, 0.03),
+    "ripple_tones.colors": keys_near(RIPPLE_TONES, 0.03),
+    "ao_color.colors": keys_near(AO_TONES, 0.05),
+    "cluster_tones.colors": keys_near(CLUSTER_TONES, 0.02),
     "n_grain.intensity": (0.1, 0.5),
 }

@@ -29,8 +29,10 @@ from blender_match.library.authoring import (
     MULTIPLY,
     OVERLAY,
     SUBTRACT,
+    color_over,
     constant_map,
-    gradient_keys,
+    gradient_over,
+    pinned_keys,
     set_material_outputs,
 )
 from blender_match.library.expressions import get, lerp, vector
@@ -90,24 +92,16 @@ def build() -> SbsGraph:
     # ---- colour -------------------------------------------------------------------------------
     g.add("sand_base", "uniform", outputcolor=(0.74, 0.60, 0.42, 1.0))
     g.bind("sand_base", "outputcolor", vector(get("sand_color", 3), 1.0).graph())
-    g.add("band_tone", "gradient", {"input1": "bands"}, **gradient_keys(BANDS))
-    g.add("col_bands", "blend", {"source": "band_tone", "destination": "sand_base", "opacity": "band_fade"},
-          blendingmode=ADD_SUB, opacitymult=0.5)
+    gradient_over(g, "col_bands", "band_tone", "bands", BANDS, "sand_base", mask="band_fade", blendingmode=ADD_SUB,
+                  opacitymult=0.5)
     g.bind("col_bands", "opacitymult", lerp(0.0, 1.0, get("bedding")).graph())
     g.add("stain_noise", "clouds_2", seed=76, scale=1.5)
-    g.add("stain", "gradient", {"input1": "stain_noise"}, **gradient_keys(STAIN))
-    g.add("col_stain", "blend", {"source": "stain", "destination": "col_bands"}, blendingmode=OVERLAY,
-          opacitymult=0.6)
-    g.add("grain_tone", "gradient", {"input1": "sand"}, **gradient_keys(GRAINS))
-    g.add("col_grain", "blend", {"source": "grain_tone", "destination": "col_stain"}, blendingmode=ADD_SUB,
-          opacitymult=0.4)
+    gradient_over(g, "col_stain", "stain", "stain_noise", STAIN, "col_bands", blendingmode=OVERLAY, opacitymult=0.6)
+    gradient_over(g, "col_grain", "grain_tone", "sand", GRAINS, "col_stain", blendingmode=ADD_SUB, opacitymult=0.4)
     g.bind("col_grain", "opacitymult", lerp(0.05, 0.7, get("grain")).graph())
-    g.add("pore_color", "uniform", outputcolor=(0.22, 0.18, 0.14, 1.0))
-    g.add("col_pores", "blend", {"source": "pore_color", "destination": "col_grain", "opacity": "pores_mask"},
-          blendingmode=MULTIPLY, opacitymult=0.5)
-    g.add("ao_tone", "gradient", {"input1": "ao"}, **gradient_keys(AO_TONE))
-    g.add("basecolor", "blend", {"source": "ao_tone", "destination": "col_pores"}, blendingmode=MULTIPLY,
-          opacitymult=0.3)
+    color_over(g, "col_pores", "pore_color", (0.22, 0.18, 0.14, 1.0), "col_grain", mask="pores_mask",
+               blendingmode=MULTIPLY, opacitymult=0.5)
+    gradient_over(g, "basecolor", "ao_tone", "ao", AO_TONE, "col_pores", blendingmode=MULTIPLY, opacitymult=0.3)
 
     # ---- roughness ----------------------------------------------------------------------------
     g.add("r_base", "histogram_range", {"input": "sand"}, range=0.08, position=0.85)
@@ -121,12 +115,6 @@ def build() -> SbsGraph:
 
 
 FAMILY = "stone"
-
-
-def _fixed(stops):
-    """A gradient's keys pinned (sampling them channel by channel would tint a neutral key)."""
-    keys = gradient_keys(stops)
-    return {"positions": (keys["positions"], keys["positions"]), "colors": (keys["colors"], keys["colors"])}
 
 
 SAMPLE_RANGES = {
@@ -147,5 +135,5 @@ SAMPLE_RANGES = {
     "pore_color.outputcolor": ((0.18, 0.15, 0.12, 1.0), (0.32, 0.27, 0.22, 1.0)),
     **{f"{node}.{p}": r for node, stops in (("band_tone", BANDS), ("stain", STAIN), ("grain_tone", GRAINS),
                                              ("ao_tone", AO_TONE))
-       for p, r in _fixed(stops).items()},
+       for p, r in pinned_keys(stops).items()},
 }

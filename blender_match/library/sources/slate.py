@@ -28,8 +28,11 @@ from blender_match.library.authoring import (
     ADD_SUB,
     COPY,
     MULTIPLY,
+    color_over,
     constant_map,
     gradient_keys,
+    gradient_over,
+    pinned_keys,
     set_material_outputs,
 )
 from blender_match.library.expressions import get, lerp, vector
@@ -95,25 +98,17 @@ def build() -> SbsGraph:
     g.add("slate", "uniform", outputcolor=(0.2, 0.21, 0.22, 1.0))
     g.bind("slate", "outputcolor", vector(get("slate_color", 3), 1.0).graph())
     g.add("mottle_noise", "clouds_2", seed=66, scale=2.0)
-    g.add("mottle", "gradient", {"input1": "mottle_noise"}, **gradient_keys(MOTTLE))
-    g.add("col_mottle", "blend", {"source": "mottle", "destination": "slate"}, blendingmode=ADD_SUB,
-          opacitymult=0.2)
-    g.add("streak", "gradient", {"input1": "grain_dir"}, **gradient_keys(STREAK))
-    g.add("col_streak", "blend", {"source": "streak", "destination": "col_mottle"}, blendingmode=ADD_SUB,
-          opacitymult=0.2)
-    g.add("edge_color", "uniform", outputcolor=(0.3, 0.3, 0.31, 1.0))
-    g.add("col_edges", "blend", {"source": "edge_color", "destination": "col_streak", "opacity": "edges_soft"},
-          blendingmode=ADD, opacitymult=0.3)
+    gradient_over(g, "col_mottle", "mottle", "mottle_noise", MOTTLE, "slate", blendingmode=ADD_SUB, opacitymult=0.2)
+    gradient_over(g, "col_streak", "streak", "grain_dir", STREAK, "col_mottle", blendingmode=ADD_SUB, opacitymult=0.2)
+    color_over(g, "col_edges", "edge_color", (0.3, 0.3, 0.31, 1.0), "col_streak", mask="edges_soft", blendingmode=ADD,
+               opacitymult=0.3)
     g.bind("col_edges", "opacitymult", lerp(0.0, 0.5, get("edge_lightness")).graph())
     g.add("fleck_noise", "white_noise", seed=67)
     g.add("flecks", "histogram_scan", {"input_1": "fleck_noise"}, position=0.01, contrast=0.85)
     g.add("flecks_soft", "blur", {"input1": "flecks"}, intensity=0.4)
-    g.add("fleck_color", "uniform", outputcolor=(0.42, 0.36, 0.28, 1.0))
-    g.add("col_flecks", "blend", {"source": "fleck_color", "destination": "col_edges", "opacity": "flecks_soft"},
-          blendingmode=COPY, opacitymult=0.5)
-    g.add("ao_tone", "gradient", {"input1": "ao"}, **gradient_keys(AO_TONE))
-    g.add("basecolor", "blend", {"source": "ao_tone", "destination": "col_flecks"}, blendingmode=MULTIPLY,
-          opacitymult=0.4)
+    color_over(g, "col_flecks", "fleck_color", (0.42, 0.36, 0.28, 1.0), "col_edges", mask="flecks_soft",
+               blendingmode=COPY, opacitymult=0.5)
+    gradient_over(g, "basecolor", "ao_tone", "ao", AO_TONE, "col_flecks", blendingmode=MULTIPLY, opacitymult=0.4)
 
     # ---- roughness ----------------------------------------------------------------------------
     g.add("r_base", "histogram_range", {"input": "grain_fine"}, range=0.12, position=0.5)
@@ -127,12 +122,6 @@ def build() -> SbsGraph:
 
 
 FAMILY = "stone"
-
-
-def _fixed(stops):
-    """A gradient's keys pinned (sampling them channel by channel would tint a neutral key)."""
-    keys = gradient_keys(stops)
-    return {"positions": (keys["positions"], keys["positions"]), "colors": (keys["colors"], keys["colors"])}
 
 
 SAMPLE_RANGES = {
@@ -155,5 +144,5 @@ SAMPLE_RANGES = {
     "edge_color.outputcolor": ((0.25, 0.25, 0.26, 1.0), (0.35, 0.35, 0.36, 1.0)),
     **{f"{node}.{p}": r for node, stops in (("terraces", TERRACES), ("mottle", MOTTLE), ("streak", STREAK),
                                              ("ao_tone", AO_TONE))
-       for p, r in _fixed(stops).items()},
+       for p, r in pinned_keys(stops).items()},
 }

@@ -33,7 +33,8 @@ from blender_match.library.authoring import (
     SOFT_LIGHT,
     SUBTRACT,
     constant_map,
-    gradient_keys,
+    gradient_over,
+    keys_near,
     set_material_outputs,
 )
 from blender_match.library.expressions import clamp, get, lerp, vector
@@ -42,14 +43,6 @@ from blender_match.translator.runtime import SbsGraph
 SHADE_TONES = [(0.0, (0.72, 0.72, 0.72)), (0.35, (0.92, 0.92, 0.92)), (1.0, (1.0, 1.0, 1.0))]
 MOTTLE_TONES = [(0.0, (0.46, 0.46, 0.46)), (1.0, (0.54, 0.54, 0.54))]
 AO_TONES = [(0.0, (0.3, 0.3, 0.3)), (1.0, (1.0, 1.0, 1.0))]
-
-
-def _near(stops, d: float) -> tuple:
-    """Per-key colour ranges of a gradient: each key's colour +- d (gray keys stay gray enough)."""
-    cols = gradient_keys(stops)["colors"]
-    lo = [max(0.0, c - d) if i % 4 < 3 else 1.0 for i, c in enumerate(cols)]
-    hi = [min(1.0, c + d) if i % 4 < 3 else 1.0 for i, c in enumerate(cols)]
-    return lo, hi
 
 
 def build() -> SbsGraph:
@@ -105,15 +98,10 @@ def build() -> SbsGraph:
     # ---- colour --------------------------------------------------------------------------------
     g.add("paint", "uniform", outputcolor=(0.86, 0.85, 0.82, 1.0))
     g.bind("paint", "outputcolor", vector(get("paint_color", 3), 1.0).graph())
-    g.add("shade", "gradient", {"input1": "height"}, **gradient_keys(SHADE_TONES))
-    g.add("paint_shaded", "blend", {"source": "shade", "destination": "paint"}, blendingmode=MULTIPLY,
-          opacitymult=0.4)
-    g.add("mottle_tones", "gradient", {"input1": "mottle"}, **gradient_keys(MOTTLE_TONES))
-    g.add("paint_mottled", "blend", {"source": "mottle_tones", "destination": "paint_shaded"},
-          blendingmode=SOFT_LIGHT, opacitymult=0.6)
-    g.add("ao_color", "gradient", {"input1": "ao"}, **gradient_keys(AO_TONES))
-    g.add("basecolor", "blend", {"source": "ao_color", "destination": "paint_mottled"}, blendingmode=MULTIPLY,
-          opacitymult=0.35)
+    gradient_over(g, "paint_shaded", "shade", "height", SHADE_TONES, "paint", blendingmode=MULTIPLY, opacitymult=0.4)
+    gradient_over(g, "paint_mottled", "mottle_tones", "mottle", MOTTLE_TONES, "paint_shaded", blendingmode=SOFT_LIGHT,
+                  opacitymult=0.6)
+    gradient_over(g, "basecolor", "ao_color", "ao", AO_TONES, "paint_mottled", blendingmode=MULTIPLY, opacitymult=0.35)
 
     # ---- roughness and metallic ---------------------------------------------------------------
     g.add("rough_base", "histogram_range", {"input": "spray"}, range=0.08, position=0.8)
@@ -141,9 +129,9 @@ SAMPLE_RANGES = {
     "mottle.scale": (1.5, 3.0),
     "blobs_frayed.opacitymult": (0.03, 0.15),
     "plateau.intensity": (1.2, 3.0),
-    "shade.colors": _near(SHADE_TONES, 0.03),
-    "mottle_tones.colors": _near(MOTTLE_TONES, 0.02),
-    "ao_color.colors": _near(AO_TONES, 0.05),
+    "shade.colors": keys_near(SHADE_TONES, 0.03),
+    "mottle_tones.colors": keys_near(MOTTLE_TONES, 0.02),
+    "ao_color.colors": keys_near(AO_TONES, 0.05),
     "n_grain.intensity": (0.2, 0.8),
     "top.range": (0.02, 0.08),
     "coat.range": (0.08, 0.2),

@@ -11,7 +11,7 @@ Exposed parameters: ``matrix_color`` (sRGB), ``chip_density`` (how many chips sh
 ``chip_contrast`` (colour strength of the chips), ``roughness``, ``pores`` (amount of pores),
 ``normal_intensity``.
 """
-from blender_match.library.authoring import constant_map, set_material_outputs
+from blender_match.library.authoring import color_over, constant_map, set_material_outputs
 from blender_match.library.expressions import get, vector
 from blender_match.translator.runtime import SbsGraph
 
@@ -45,22 +45,19 @@ def build() -> SbsGraph:
           colors=[0.93, 0.92, 0.9, 1.0, 0.62, 0.61, 0.6, 1.0, 0.09, 0.09, 0.1, 1.0, 0.55, 0.25, 0.15, 1.0,
                   0.28, 0.42, 0.33, 1.0, 0.85, 0.83, 0.8, 1.0, 0.38, 0.37, 0.37, 1.0])
     g.add("chip_grain", "gaussian_noise", seed=3, scale=16.0)
-    g.add("chip_grain_tone", "uniform", outputcolor=[0.85, 0.85, 0.85, 1.0])
-    g.add("chip_colors_grain", "blend", {"source": "chip_grain_tone", "destination": "chip_colors",
-                                         "opacity": "chip_grain"}, blendingmode=3, opacitymult=0.4)
+    color_over(g, "chip_colors_grain", "chip_grain_tone", [0.85, 0.85, 0.85, 1.0], "chip_colors", mask="chip_grain",
+               blendingmode=3, opacitymult=0.4)
 
     # matrix
     g.add("matrix_base", "uniform")
     g.bind("matrix_base", "outputcolor", vector(get("matrix_color", 3), 1.0).graph())
     g.add("speckle", "white_noise", seed=8)
     g.add("speckle_dots", "histogram_scan", {"input_1": "speckle"}, position=0.06, contrast=0.7)
-    g.add("speckle_color", "uniform", outputcolor=[0.35, 0.34, 0.33, 1.0])
-    g.add("matrix_speckled", "blend", {"source": "speckle_color", "destination": "matrix_base",
-                                       "opacity": "speckle_dots"}, opacitymult=0.6)
+    color_over(g, "matrix_speckled", "speckle_color", [0.35, 0.34, 0.33, 1.0], "matrix_base", mask="speckle_dots",
+               opacitymult=0.6)
     g.add("matrix_clouds", "clouds_2", seed=19, scale=2.0)
-    g.add("matrix_tone", "uniform", outputcolor=[0.9, 0.89, 0.87, 1.0])
-    g.add("matrix_color", "blend", {"source": "matrix_tone", "destination": "matrix_speckled",
-                                    "opacity": "matrix_clouds"}, blendingmode=3, opacitymult=0.5)
+    color_over(g, "matrix_color", "matrix_tone", [0.9, 0.89, 0.87, 1.0], "matrix_speckled", mask="matrix_clouds",
+               blendingmode=3, opacitymult=0.5)
 
     g.add("chips_on_matrix", "blend", {"source": "chip_colors_grain", "destination": "matrix_color",
                                        "opacity": "chip_mask"})

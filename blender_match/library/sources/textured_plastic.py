@@ -28,8 +28,10 @@ from blender_match.library.authoring import (
     OVERLAY,
     SOFT_LIGHT,
     SUBTRACT,
+    ao_darken,
     constant_map,
-    gradient_keys,
+    gradient_over,
+    normal_and_ao,
     set_material_outputs,
 )
 from blender_match.library.expressions import get, lerp, vector
@@ -69,24 +71,17 @@ def build() -> SbsGraph:
     g.add("undulation", "clouds_2", seed=85, scale=1.0)
     g.add("height", "blend", {"source": "undulation", "destination": "texture_level"},
           blendingmode=ADD_SUB, opacitymult=0.06)
-    g.add("normal", "normal", {"input1": "height"}, intensity=1.8, inversedy=True)
-    g.add("ao", "ambient_occlusion_2", {"source": "height"}, height_depth=0.1, spreading=0.04)
+    normal_and_ao(g, "height", intensity=1.8, height_depth=0.1, spreading=0.04)
 
     # ---- colour ------------------------------------------------------------------------------
     g.add("plastic", "uniform", outputcolor=(0.12, 0.12, 0.13, 1.0))
     g.bind("plastic", "outputcolor", vector(get("plastic_color", 3), 1.0).graph())
-    g.add("mottle", "gradient", {"input1": "undulation"}, **gradient_keys([
-        (0.0, (0.46, 0.46, 0.46)), (1.0, (0.54, 0.54, 0.54))]))
-    g.add("plastic_mottled", "blend", {"source": "mottle", "destination": "plastic"},
-          blendingmode=SOFT_LIGHT, opacitymult=0.5)
-    g.add("relief_tone", "gradient", {"input1": "texture"}, **gradient_keys([
-        (0.0, (0.78, 0.78, 0.78)), (0.6, (0.95, 0.95, 0.95)), (1.0, (1.0, 1.0, 1.0))]))
-    g.add("plastic_relief", "blend", {"source": "relief_tone", "destination": "plastic_mottled"},
-          blendingmode=MULTIPLY, opacitymult=0.8)
-    g.add("ao_tone", "gradient", {"input1": "ao"}, **gradient_keys([
-        (0.0, (0.4, 0.4, 0.4)), (1.0, (1.0, 1.0, 1.0))]))
-    g.add("basecolor", "blend", {"source": "ao_tone", "destination": "plastic_relief"},
-          blendingmode=MULTIPLY, opacitymult=0.4)
+    gradient_over(g, "plastic_mottled", "mottle", "undulation", [(0.0, (0.46, 0.46, 0.46)), (1.0, (0.54, 0.54, 0.54))],
+                  "plastic", blendingmode=SOFT_LIGHT, opacitymult=0.5)
+    gradient_over(g, "plastic_relief", "relief_tone", "texture",
+                  [(0.0, (0.78, 0.78, 0.78)), (0.6, (0.95, 0.95, 0.95)), (1.0, (1.0, 1.0, 1.0))], "plastic_mottled",
+                  blendingmode=MULTIPLY, opacitymult=0.8)
+    ao_darken(g, "basecolor", "plastic_relief", floor=0.4, opacitymult=0.4, color_name="ao_tone")
 
     # ---- roughness and metallic ---------------------------------------------------------------
     g.add("rough_base", "histogram_range", {"input": "texture"}, range=0.12, position=0.55)

@@ -31,8 +31,10 @@ from blender_match.library.authoring import (
     MAX,
     MULTIPLY,
     SUBTRACT,
+    color_over,
     constant_map,
-    gradient_keys,
+    gradient_over,
+    pinned_keys,
     set_material_outputs,
 )
 from blender_match.library.expressions import get, lerp, vector
@@ -99,24 +101,16 @@ def build() -> SbsGraph:
     # ---- colour -------------------------------------------------------------------------------
     g.add("stone", "uniform", outputcolor=(0.80, 0.72, 0.60, 1.0))
     g.bind("stone", "outputcolor", vector(get("stone_color", 3), 1.0).graph())
-    g.add("band_tone", "gradient", {"input1": "band_field"}, **gradient_keys(BANDS))
-    g.add("col_bands", "blend", {"source": "band_tone", "destination": "stone"}, blendingmode=ADD_SUB,
-          opacitymult=0.5)
+    gradient_over(g, "col_bands", "band_tone", "band_field", BANDS, "stone", blendingmode=ADD_SUB, opacitymult=0.5)
     g.bind("col_bands", "opacitymult", lerp(0.0, 1.0, get("banding")).graph())
     g.add("mottle_noise", "clouds_2", seed=87, scale=3.0)
-    g.add("mottle", "gradient", {"input1": "mottle_noise"}, **gradient_keys(MOTTLE))
-    g.add("col_mottle", "blend", {"source": "mottle", "destination": "col_bands"}, blendingmode=ADD_SUB,
-          opacitymult=0.4)
-    g.add("vein_color", "uniform", outputcolor=VEIN_COLOR)
-    g.add("col_veins", "blend", {"source": "vein_color", "destination": "col_mottle", "opacity": "veins_soft"},
-          blendingmode=MULTIPLY, opacitymult=0.5)
+    gradient_over(g, "col_mottle", "mottle", "mottle_noise", MOTTLE, "col_bands", blendingmode=ADD_SUB, opacitymult=0.4)
+    color_over(g, "col_veins", "vein_color", VEIN_COLOR, "col_mottle", mask="veins_soft", blendingmode=MULTIPLY,
+               opacitymult=0.5)
     g.bind("col_veins", "opacitymult", lerp(0.0, 0.9, get("banding")).graph())
-    g.add("void_color", "uniform", outputcolor=VOID_COLOR)
-    g.add("col_voids", "blend", {"source": "void_color", "destination": "col_veins", "opacity": "holes_soft"},
-          blendingmode=MULTIPLY, opacitymult=0.8)
-    g.add("ao_tone", "gradient", {"input1": "ao"}, **gradient_keys(AO_TONE))
-    g.add("basecolor", "blend", {"source": "ao_tone", "destination": "col_voids"}, blendingmode=MULTIPLY,
-          opacitymult=0.5)
+    color_over(g, "col_voids", "void_color", VOID_COLOR, "col_veins", mask="holes_soft", blendingmode=MULTIPLY,
+               opacitymult=0.8)
+    gradient_over(g, "basecolor", "ao_tone", "ao", AO_TONE, "col_voids", blendingmode=MULTIPLY, opacitymult=0.5)
 
     # ---- roughness ----------------------------------------------------------------------------
     g.add("r_base", "histogram_range", {"input": "mottle_noise"}, range=0.06, position=0.5)
@@ -131,12 +125,6 @@ def build() -> SbsGraph:
 
 
 FAMILY = "stone"
-
-
-def _fixed(stops):
-    """A gradient's keys pinned (sampling them channel by channel would tint a neutral key)."""
-    keys = gradient_keys(stops)
-    return {"positions": (keys["positions"], keys["positions"]), "colors": (keys["colors"], keys["colors"])}
 
 
 SAMPLE_RANGES = {
@@ -165,5 +153,5 @@ SAMPLE_RANGES = {
     "vein_color.outputcolor": ((0.45, 0.36, 0.26, 1.0), (0.65, 0.56, 0.46, 1.0)),
     "void_color.outputcolor": ((0.28, 0.24, 0.2, 1.0), (0.55, 0.5, 0.42, 1.0)),
     **{f"{node}.{p}": r for node, stops in (("band_tone", BANDS), ("mottle", MOTTLE), ("ao_tone", AO_TONE))
-       for p, r in _fixed(stops).items()},
+       for p, r in pinned_keys(stops).items()},
 }

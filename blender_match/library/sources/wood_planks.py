@@ -28,12 +28,13 @@ from blender_match.library.authoring import (
     ADD,
     COPY,
     MAX,
-    MULTIPLY,
     OVERLAY,
     SOFT_LIGHT,
     SUBTRACT,
+    ao_darken,
+    color_over,
     constant_map,
-    gradient_keys,
+    gradient_over,
     set_material_outputs,
 )
 from blender_match.library.expressions import const, get, lerp, minimum, vector
@@ -78,29 +79,23 @@ def build() -> SbsGraph:
     g.bind("wood_light", "outputcolor", vector(minimum(wood * 1.25, const((1.0, 1.0, 1.0))), 1.0).graph())
     g.add("wood_base", "blend", {"source": "wood_light", "destination": "wood_dark", "opacity": "grain"},
           blendingmode=COPY, opacitymult=1.0)
-    g.add("plank_tone", "gradient", {"input1": "plank_id"}, **gradient_keys([
+    gradient_over(g, "wood_planked", "plank_tone", "plank_id", [
         (0.0, (0.26, 0.25, 0.27)), (0.3, (0.46, 0.44, 0.42)), (0.65, (0.56, 0.51, 0.45)),
-        (1.0, (0.74, 0.64, 0.50))]))
-    g.add("wood_planked", "blend", {"source": "plank_tone", "destination": "wood_base"},
-          blendingmode=OVERLAY, opacitymult=0.55)
+        (1.0, (0.74, 0.64, 0.50))], "wood_base", blendingmode=OVERLAY, opacitymult=0.55)
     g.bind("wood_planked", "opacitymult", get("plank_variation").graph())
-    g.add("cloud_tone", "gradient", {"input1": "clouds"}, **gradient_keys([
-        (0.0, (0.42, 0.42, 0.42)), (1.0, (0.58, 0.56, 0.53))]))
-    g.add("wood_clouded", "blend", {"source": "cloud_tone", "destination": "wood_planked"},
-          blendingmode=SOFT_LIGHT, opacitymult=0.6)
+    gradient_over(g, "wood_clouded", "cloud_tone", "clouds", [(0.0, (0.42, 0.42, 0.42)), (1.0, (0.58, 0.56, 0.53))],
+                  "wood_planked", blendingmode=SOFT_LIGHT, opacitymult=0.6)
 
     # wear of the finish
     g.add("grunge", "grunge_map_002", seed=8, scale=2.0, balance=0.5, contrast=0.5)
     g.add("wear_mask", "histogram_scan", {"input_1": "grunge"}, position=0.25, contrast=0.5)
     g.bind("wear_mask", "position", lerp(0.0, 0.5, get("wear")).graph())
-    g.add("worn_color", "uniform", outputcolor=(0.70, 0.60, 0.48, 1.0))
-    g.add("wood_worn", "blend", {"source": "worn_color", "destination": "wood_clouded", "opacity": "wear_mask"},
-          blendingmode=SOFT_LIGHT, opacitymult=0.5)
+    color_over(g, "wood_worn", "worn_color", (0.70, 0.60, 0.48, 1.0), "wood_clouded", mask="wear_mask",
+               blendingmode=SOFT_LIGHT, opacitymult=0.5)
 
     # gaps and occlusion
-    g.add("gap_color", "uniform", outputcolor=(0.05, 0.035, 0.025, 1.0))
-    g.add("wood_gaps", "blend", {"source": "gap_color", "destination": "wood_worn", "opacity": "gap_mask"},
-          blendingmode=COPY, opacitymult=0.9)
+    color_over(g, "wood_gaps", "gap_color", (0.05, 0.035, 0.025, 1.0), "wood_worn", mask="gap_mask", blendingmode=COPY,
+               opacitymult=0.9)
 
     # ---- height and normal ----------------------------------------------------------------------
     g.add("pores", "histogram_scan", {"input_1": "grain"}, position=0.7, contrast=0.3, invert_position=True)
@@ -108,9 +103,7 @@ def build() -> SbsGraph:
           blendingmode=SUBTRACT, opacitymult=0.05)
     g.add("height", "histogram_range", {"input": "height_grain"}, range=0.9, position=0.55)
     g.add("ao", "ambient_occlusion_2", {"source": "height"}, height_depth=0.12, spreading=0.1)
-    g.add("ao_color", "gradient", {"input1": "ao"}, **gradient_keys([(0.0, (0.2, 0.2, 0.2)), (1.0, (1.0, 1.0, 1.0))]))
-    g.add("basecolor", "blend", {"source": "ao_color", "destination": "wood_gaps"},
-          blendingmode=MULTIPLY, opacitymult=0.5)
+    ao_darken(g, "basecolor", "wood_gaps", floor=0.2, opacitymult=0.5)
 
     g.add("normal_main", "normal", {"input1": "height"}, intensity=6.0, inversedy=True)
     g.add("normal_fibres", "normal", {"input1": "grain_shift"}, intensity=0.6, inversedy=True)

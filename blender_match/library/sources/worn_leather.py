@@ -35,8 +35,11 @@ from blender_match.library.authoring import (
     SCREEN,
     SOFT_LIGHT,
     SUBTRACT,
+    ao_darken,
+    color_over,
     constant_map,
-    gradient_keys,
+    gradient_over,
+    normal_and_ao,
     set_material_outputs,
 )
 from blender_match.library.expressions import get, lerp, vector
@@ -104,32 +107,25 @@ def build() -> SbsGraph:
 
     # ---- height and normal -------------------------------------------------------------------
     g.add("height", "histogram_range", {"input": "scuffed"}, range=1.0, position=0.5)
-    g.add("normal", "normal", {"input1": "height"}, intensity=2.0, inversedy=True)
-    g.add("ao", "ambient_occlusion_2", {"source": "height"}, height_depth=0.1, spreading=0.05)
+    normal_and_ao(g, "height", intensity=2.0, height_depth=0.1, spreading=0.05)
 
     # ---- colour ------------------------------------------------------------------------------
     g.add("dye", "uniform", outputcolor=(0.34, 0.18, 0.09, 1.0))
     g.bind("dye", "outputcolor", vector(get("leather_color", 3), 1.0).graph())
-    g.add("variegation", "gradient", {"input1": "flow"}, **gradient_keys([
-        (0.0, (0.36, 0.36, 0.36)), (0.5, (0.50, 0.50, 0.50)), (1.0, (0.64, 0.62, 0.58))]))
-    g.add("dye_varied", "blend", {"source": "variegation", "destination": "dye"},
-          blendingmode=SOFT_LIGHT, opacitymult=0.5)
-    g.add("worn_tone", "uniform", outputcolor=(0.50, 0.44, 0.38, 1.0))
-    g.add("dye_worn", "blend", {"source": "worn_tone", "destination": "dye_varied", "opacity": "worn"},
-          blendingmode=SCREEN, opacitymult=0.6)
+    gradient_over(g, "dye_varied", "variegation", "flow",
+                  [(0.0, (0.36, 0.36, 0.36)), (0.5, (0.50, 0.50, 0.50)), (1.0, (0.64, 0.62, 0.58))], "dye",
+                  blendingmode=SOFT_LIGHT, opacitymult=0.5)
+    color_over(g, "dye_worn", "worn_tone", (0.50, 0.44, 0.38, 1.0), "dye_varied", mask="worn", blendingmode=SCREEN,
+               opacitymult=0.6)
     g.add("dye_scuffed", "blend", {"source": "worn_tone", "destination": "dye_worn", "opacity": "scuffs"},
           blendingmode=SCREEN, opacitymult=0.35)
-    g.add("grime", "uniform", outputcolor=(0.30, 0.27, 0.25, 1.0))
-    g.add("dye_crazed", "blend", {"source": "grime", "destination": "dye_scuffed", "opacity": "craze_masked"},
-          blendingmode=MULTIPLY, opacitymult=0.5)
+    color_over(g, "dye_crazed", "grime", (0.30, 0.27, 0.25, 1.0), "dye_scuffed", mask="craze_masked",
+               blendingmode=MULTIPLY, opacitymult=0.5)
     g.bind("dye_crazed", "opacitymult", lerp(0.0, 0.7, get("crazing")).graph())
     g.add("dye_dark", "blend", {"source": "grime", "destination": "dye_crazed", "opacity": "crease_lines"},
           blendingmode=MULTIPLY, opacitymult=0.6)
     g.bind("dye_dark", "opacitymult", lerp(0.0, 1.0, get("creases")).graph())
-    g.add("ao_color", "gradient", {"input1": "ao"},
-          **gradient_keys([(0.0, (0.35, 0.35, 0.35)), (1.0, (1.0, 1.0, 1.0))]))
-    g.add("basecolor", "blend", {"source": "ao_color", "destination": "dye_dark"},
-          blendingmode=MULTIPLY, opacitymult=0.3)
+    ao_darken(g, "basecolor", "dye_dark", floor=0.35, opacitymult=0.3)
 
     # ---- roughness and metallic ---------------------------------------------------------------
     g.add("rough_base", "histogram_range", {"input": "flow"}, range=0.1, position=0.5)

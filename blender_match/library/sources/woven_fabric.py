@@ -29,8 +29,9 @@ from blender_match.library.authoring import (
     MULTIPLY,
     SOFT_LIGHT,
     SUBTRACT,
+    ao_darken,
     constant_map,
-    gradient_keys,
+    gradient_over,
     set_material_outputs,
 )
 from blender_match.library.expressions import get, lerp, vector
@@ -81,24 +82,17 @@ def build() -> SbsGraph:
     g.bind("weft_base", "outputcolor", vector(get("weft_color", 3), 1.0).graph())
     g.add("threads", "blend", {"source": "weft_base", "destination": "warp_base", "opacity": "weft_top"},
           blendingmode=COPY, opacitymult=1.0)
-    g.add("shade", "gradient", {"input1": "height"}, **gradient_keys([
-        (0.0, (0.25, 0.25, 0.25)), (0.5, (0.80, 0.80, 0.80)), (1.0, (1.0, 1.0, 1.0))]))
-    g.add("shaded", "blend", {"source": "shade", "destination": "threads"},
-          blendingmode=MULTIPLY, opacitymult=0.6)
+    gradient_over(g, "shaded", "shade", "height",
+                  [(0.0, (0.25, 0.25, 0.25)), (0.5, (0.80, 0.80, 0.80)), (1.0, (1.0, 1.0, 1.0))], "threads",
+                  blendingmode=MULTIPLY, opacitymult=0.6)
     g.bind("shaded", "opacitymult", lerp(0.3, 0.9, get("thread_relief")).graph())
-    g.add("fuzz_tone", "gradient", {"input1": "fuzz_soft"}, **gradient_keys([
-        (0.0, (0.42, 0.42, 0.42)), (1.0, (0.62, 0.62, 0.62))]))
-    g.add("fuzz_colored", "blend", {"source": "fuzz_tone", "destination": "shaded"},
-          blendingmode=SOFT_LIGHT, opacitymult=0.5)
+    gradient_over(g, "fuzz_colored", "fuzz_tone", "fuzz_soft", [(0.0, (0.42, 0.42, 0.42)), (1.0, (0.62, 0.62, 0.62))],
+                  "shaded", blendingmode=SOFT_LIGHT, opacitymult=0.5)
     g.bind("fuzz_colored", "opacitymult", lerp(0.1, 0.9, get("fuzz")).graph())
     g.add("slub", "clouds_1", seed=55, scale=6.0)
-    g.add("slub_tone", "gradient", {"input1": "slub"}, **gradient_keys([
-        (0.0, (0.44, 0.44, 0.44)), (1.0, (0.58, 0.57, 0.55))]))
-    g.add("slubbed", "blend", {"source": "slub_tone", "destination": "fuzz_colored"},
-          blendingmode=SOFT_LIGHT, opacitymult=0.5)
-    g.add("ao_color", "gradient", {"input1": "ao"}, **gradient_keys([(0.0, (0.3, 0.3, 0.3)), (1.0, (1.0, 1.0, 1.0))]))
-    g.add("basecolor", "blend", {"source": "ao_color", "destination": "slubbed"},
-          blendingmode=MULTIPLY, opacitymult=0.4)
+    gradient_over(g, "slubbed", "slub_tone", "slub", [(0.0, (0.44, 0.44, 0.44)), (1.0, (0.58, 0.57, 0.55))],
+                  "fuzz_colored", blendingmode=SOFT_LIGHT, opacitymult=0.5)
+    ao_darken(g, "basecolor", "slubbed", floor=0.3, opacitymult=0.4)
 
     # ---- roughness and metallic ---------------------------------------------------------------
     g.add("rough_inv", "invert_grayscale", {"source": "height"})
