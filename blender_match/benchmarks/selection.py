@@ -52,7 +52,7 @@ class _GraphTally:
     targets: int = 0
     top1: int = 0
     top3: int = 0
-    ranks: list[int] = field(default_factory=list)
+    ranks: list[int | str] = field(default_factory=list)
     pred_err: float = 0.0
     bank_err: float = 0.0
     default_err: float = 0.0
@@ -159,7 +159,7 @@ def _scaling(names: list[str], template: dict, method: str, device, materials: d
             t0 = time.perf_counter()
             rank_graphs(photo, method, device=device, graphs=names[:size], materials=materials)
             seconds.append(time.perf_counter() - t0)
-        row = {key: "" for key in template}
+        row: dict = {key: "" for key in template}
         row.update(graph=f"rank@{size}", targets=len(targets), rank_seconds=round(_median(seconds), 2))
         rows.append(row)
         print(f"bench selection: ranking among {size} graphs: {row['rank_seconds']}s", file=sys.stderr, flush=True)

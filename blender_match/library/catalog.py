@@ -100,7 +100,7 @@ def family_of(entry: dict) -> str | None:
 def by_family(names: list[str]) -> list[str]:
     """Library graph names grouped by family in FAMILIES' order, then the user's, each group sorted."""
     order = {key: i for i, key in enumerate(FAMILIES)}
-    return sorted(names, key=lambda n: (order.get(family_of(library_entry(n)), len(order)), n))
+    return sorted(names, key=lambda n: (order.get(family_of(library_entry(n)) or "", len(order)), n))
 
 
 def check_name(name: str) -> str:

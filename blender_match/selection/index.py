@@ -24,7 +24,7 @@ class SelectionIndex:
     """The stacked banks of ``names`` (graphs without a current bank are left out: ``names``
     lists those indexed)."""
 
-    def __init__(self, names, directory=None):
+    def __init__(self, names, directory=None) -> None:
         self.names: list[str] = []
         descriptors, owners, thetas = [], [], []
         for name in names:

@@ -142,9 +142,9 @@ def rank_graphs(photo: torch.Tensor, method: str = "both", *, seed: int = 0, dev
         descriptor = compact_descriptor(vgg, photo, DESCRIPTOR_SIZE)
         target = gram(resize_square(photo, RANK_SIZE), (RANK_SIZE,))
     if method != "predictor" and shortlist is not None and len(names) > shortlist:
-        index = selection_index(names, directory)
-        near = [e["graph"] for e in index.nearest_graphs(descriptor, shortlist)]
-        names = near + [n for n in names if n not in index.names]
+        banks = selection_index(names, directory)
+        near = [e["graph"] for e in banks.nearest_graphs(descriptor, shortlist)]
+        names = near + [n for n in names if n not in banks.names]
     entries = []
     for index, name in enumerate(names):
         if cancel is not None and cancel():
