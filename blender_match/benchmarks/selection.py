@@ -25,6 +25,7 @@ N = 16, 32, ... and the whole library (how ranking grows with the library). Opti
 """
 from __future__ import annotations
 
+import statistics
 import sys
 import time
 from dataclasses import asdict, dataclass, field
@@ -137,8 +138,8 @@ def run(device: str = "cpu", graphs=None, targets: int = 2, fit_targets: int = 1
 
 
 def _median(values) -> float:
-    ordered = sorted(values)
-    return ordered[len(ordered) // 2] if ordered else 0.0
+    values = list(values)
+    return statistics.median(values) if values else 0.0
 
 
 def _scaling(names: list[str], template: dict, method: str, device, materials: dict, target_size: int,

@@ -39,9 +39,6 @@ class SelectionIndex:
         self.owners = torch.cat(owners) if owners else torch.zeros(0, dtype=torch.int64)
         self.thetas = thetas
 
-    def __len__(self) -> int:
-        return len(self.names)
-
     def nearest_graphs(self, descriptor: torch.Tensor, count: int | None = None) -> list[dict]:
         """The ``count`` graphs (all when None) whose nearest bank sample is closest to the
         descriptor (D,) or (1, D), best first: {"graph", "distance", "theta" (that sample's (P,))}."""

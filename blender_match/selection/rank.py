@@ -73,9 +73,10 @@ def order_by_simplicity(entries: list[dict], tolerance: float = TIE_TOLERANCE, k
 
 
 def propose_starts(name: str, graph, descriptor: torch.Tensor, method: str = "both",
-                   directory=None) -> list[tuple[str, torch.Tensor]]:
+                   directory=None, bank_start: torch.Tensor | None = None) -> list[tuple[str, torch.Tensor]]:
     """(start kind, normalised (P,) theta) the models propose for one graph, given the photo's
-    compact descriptor."""
+    compact descriptor. ``bank_start``: the bank's nearest sample when the caller already has it
+    (the selection index's); else the graph's bank is read."""
     out = []
     P = graph.num_params()
     if method in ("predictor", "both") and predictor_is_current(name, directory):
@@ -84,9 +85,11 @@ def propose_starts(name: str, graph, descriptor: torch.Tensor, method: str = "bo
             with torch.no_grad():
                 out.append(("predicted", model(descriptor.cpu())[0].clamp(0, 1)))
     if method in ("bank", "both"):
-        bank = current_bank(name, directory)
-        if bank is not None and bank["thetas"].shape[1] == P:
-            out.append(("bank", nearest(bank, descriptor.cpu())[0]["theta"]))
+        if bank_start is None:
+            bank = current_bank(name, directory)
+            bank_start = nearest(bank, descriptor.cpu())[0]["theta"] if bank is not None else None
+        if bank_start is not None and bank_start.numel() == P:
+            out.append(("bank", bank_start))
     return out
 
 
@@ -141,10 +144,11 @@ def rank_graphs(photo: torch.Tensor, method: str = "both", *, seed: int = 0, dev
     with torch.no_grad():
         descriptor = compact_descriptor(vgg, photo, DESCRIPTOR_SIZE)
         target = gram(resize_square(photo, RANK_SIZE), (RANK_SIZE,))
-    if method != "predictor" and shortlist is not None and len(names) > shortlist:
+    bank_starts: dict[str, torch.Tensor] = {}
+    if method != "predictor":
         banks = selection_index(names, directory)
-        near = [e["graph"] for e in banks.nearest_graphs(descriptor, shortlist)]
-        names = near + [n for n in names if n not in banks.names]
+        bank_starts = {e["graph"]: e["theta"] for e in banks.nearest_graphs(descriptor, shortlist)}
+        names = list(bank_starts) + [n for n in names if n not in banks.names]
     entries = []
     for index, name in enumerate(names):
         if cancel is not None and cancel():
@@ -152,7 +156,7 @@ def rank_graphs(photo: torch.Tensor, method: str = "both", *, seed: int = 0, dev
         if progress is not None:
             progress({"graph": name, "graph_index": index + 1, "graph_count": len(names)})
         graph = load_material(name, device, materials)
-        proposals = propose_starts(name, graph, descriptor, method, directory)
+        proposals = propose_starts(name, graph, descriptor, method, directory, bank_starts.get(name))
         if not proposals:
             continue
         thetas = torch.stack([t for _, t in proposals]).to(device)
