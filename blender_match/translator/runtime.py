@@ -186,7 +186,7 @@ def _discrete(p, value, where: str):
         return value
     if isinstance(value, str):
         raise DiffMatError(f"{where}: expected a number, got a string")
-    x = float(value.reshape(-1)[0])
+    x = float(torch.as_tensor(value).detach().reshape(-1)[0])
     if not math.isfinite(x):
         raise DiffMatError(f"{where}: value {x} is not finite")
     if p.kind == "bool":
