@@ -6,7 +6,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from ..pipeline import MatchOptions, match_photo
+from ..pipeline import AUTO_CANDIDATES, MatchOptions, match_photo
 from ..vocabulary import DEFAULT_DEVICE, DEFAULT_QUALITY, DEVICE_NAMES, QUALITY_NAMES
 from ._progress import progress_bar
 
@@ -22,6 +22,9 @@ def add_parser(sub):
     p.add_argument("--device", choices=DEVICE_NAMES, default=DEFAULT_DEVICE,
                    help=f"where to run (default {DEFAULT_DEVICE})")
     p.add_argument("--iterations", type=int, help="override the quality preset's iteration count")
+    p.add_argument("--candidates", type=int, default=AUTO_CANDIDATES,
+                   help=f"without --graph: fit this many of the best-ranked graphs and keep the best fit "
+                        f"(default {AUTO_CANDIDATES}; 3 is the MATch paper's)")
     p.add_argument("--overwrite", action="store_true", help="replace files already in --out")
     p.add_argument("--json", action="store_true", help="print the report as JSON instead of a summary")
     p.set_defaults(run=run)
@@ -50,7 +53,8 @@ class _MatchProgress:
 
 def run(args) -> int:
     options = MatchOptions(graph=args.graph, size=args.size, quality=args.quality, seed=args.seed,
-                           device=args.device, overwrite=args.overwrite, iterations=args.iterations)
+                           device=args.device, overwrite=args.overwrite, iterations=args.iterations,
+                           candidates=args.candidates)
     display = _MatchProgress()
     try:
         report = match_photo(args.photo, args.out, options, progress=display)

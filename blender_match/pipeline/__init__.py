@@ -18,8 +18,8 @@ Modules: ``options`` (MatchOptions, their checks, quality -> Schedule), ``device
 """
 from .device import resolve_device
 from .graphs import load_graph
-from .match import AUTO_CANDIDATES, Match, fit_named_graph, fit_photo, match_photo
-from .options import PHOTO_SIZE, MatchOptions, check_size, match_schedule
+from .match import Match, fit_named_graph, fit_photo, match_photo
+from .options import AUTO_CANDIDATES, PHOTO_SIZE, MatchOptions, check_size, match_schedule
 from .rerender import render_params
 from .result_folder import MatchFailed
 

@@ -3,9 +3,10 @@ selection, written as a result folder (``match_photo``) or returned (``fit_photo
 
 With ``options.graph`` the graph is fitted from the start the product chooses (default, bank or
 predicted parameters: ``selection.choose_start``). Without it the library is ranked for the
-photo and the best ``AUTO_CANDIDATES`` graphs are fitted under one shared budget, the best kept
-(``selection.select_and_fit``). The photo is read once and moved to the device once; the quality
-preset becomes the optimiser's schedule once (``match_schedule``).
+photo and the best ``options.candidates`` graphs (``AUTO_CANDIDATES``: the first) are fitted
+under one shared budget, the best kept (``selection.select_and_fit``). The photo is read once
+and moved to the device once; the quality preset becomes the optimiser's schedule once
+(``match_schedule``).
 """
 from __future__ import annotations
 
@@ -23,11 +24,9 @@ from ..selection import budget_factor, check_photo, choose_start, rank_graphs, s
 from ..vocabulary import FITTING, READING_PHOTO, SELECTING, WRITING_MAPS
 from .device import resolve_device
 from .graphs import load_graph
-from .options import PHOTO_SIZE, MatchOptions, check_size, match_schedule
+from .options import PHOTO_SIZE, MatchOptions, check_candidates, check_size, match_schedule
 from .progress import AUTO_SHARES, NAMED_SHARES, JobProgress
 from .result_folder import MATCH_FILES, MatchFailed, check_targets, write_result
-
-AUTO_CANDIDATES = 3  # automatic selection fits this many of the best-ranked graphs (the paper's 3)
 
 Progress = Callable[[dict], None]
 Cancel = Callable[[], bool]
@@ -122,7 +121,7 @@ def _fit_auto(job: JobProgress, target: torch.Tensor, options: MatchOptions, sch
     materials: dict[str, MaterialGraph] = {}
     ranking = rank_graphs(target, "both", seed=options.seed, device=target.device, progress=on_rank,
                           cancel=job.cancel, materials=materials)
-    k = AUTO_CANDIDATES
+    k = options.candidates
     job.stage(FITTING, graph=ranking[0]["graph"], graph_index=1, graph_count=min(k, len(ranking)))
     loss = photo_loss(target, target.device)
     best, fits = select_and_fit(loss, ranking, k, schedule, seed=options.seed, materials=materials,
@@ -161,6 +160,7 @@ def fit_photo(photo, options: MatchOptions, progress: Progress | None = None,
     returns) as ``match_photo`` does, without writing anything: the fitted ``Match``.
     ``options.size`` and ``options.overwrite`` play no part."""
     schedule = match_schedule(options.quality, options.iterations)
+    check_candidates(options.candidates)
     device = resolve_device(options.device)
     job = JobProgress(progress, cancel, NAMED_SHARES if options.graph else AUTO_SHARES)
     match = _fit(job, photo, options, schedule, device, None)
@@ -175,6 +175,7 @@ def match_photo(photo, out_dir, options: MatchOptions, progress: Progress | None
     (``pipeline.result_folder``); returns report.json's content. Existing files are refused
     before any work unless ``options.overwrite``."""
     schedule = match_schedule(options.quality, options.iterations)
+    check_candidates(options.candidates)
     size = check_size(options.size)
     device = resolve_device(options.device)
     job = JobProgress(progress, cancel, NAMED_SHARES if options.graph else AUTO_SHARES)

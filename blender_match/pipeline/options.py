@@ -9,6 +9,10 @@ from ..errors import OptionError
 from ..vocabulary import DEFAULT_DEVICE, DEFAULT_QUALITY, QUALITY_NAMES
 
 PHOTO_SIZE = 512  # the photo is described at 512 at most (the paper's largest scale)
+# Automatic selection fits this many of the best-ranked graphs and keeps the best final loss. The
+# paper fits 3; on real photos the ranking's first is the better choice (docs/benchmarks.md): the
+# fit's loss favours the graphs that absorb a photo's lighting, not the ones that share its material.
+AUTO_CANDIDATES = 1
 MIN_SIZE, MAX_SIZE = 16, 8192
 
 
@@ -16,7 +20,8 @@ MIN_SIZE, MAX_SIZE = 16, 8192
 class MatchOptions:
     """What to match and how. ``graph``: a library graph's name, a bundled graph's name or a
     ``.sbs`` path (None: automatic selection). ``iterations`` overrides the quality preset's
-    iteration count (tests and scripted drafts)."""
+    iteration count (tests and scripted drafts). ``candidates``: how many of the best-ranked graphs
+    automatic selection fits, keeping the best final loss (3: the paper's)."""
 
     graph: str | None = None
     size: int = 2048
@@ -25,6 +30,7 @@ class MatchOptions:
     device: str = DEFAULT_DEVICE
     overwrite: bool = False
     iterations: int | None = None
+    candidates: int = AUTO_CANDIDATES
 
 
 def check_size(size) -> int:
@@ -33,6 +39,13 @@ def check_size(size) -> int:
             or size & (size - 1)):
         raise OptionError(f"size {size!r}: expected a power of two between {MIN_SIZE} and {MAX_SIZE}")
     return size
+
+
+def check_candidates(candidates) -> int:
+    """``candidates`` when it is a positive whole number, else OptionError."""
+    if isinstance(candidates, bool) or not isinstance(candidates, int) or candidates < 1:
+        raise OptionError(f"candidates {candidates!r}: expected a positive integer")
+    return candidates
 
 
 def match_schedule(quality: str, iterations: int | None = None) -> Schedule:

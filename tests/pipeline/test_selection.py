@@ -6,6 +6,7 @@ import json
 import pytest
 import torch
 
+from blender_match.errors import OptionError
 from blender_match.library import builtin_names, library_names, load_library_graph
 from blender_match.selection import predictor
 from blender_match.selection.bank import (
@@ -206,7 +207,7 @@ def test_match_without_a_graph_selects_fits_and_reports(tmp_path):
 
     photo = _synthetic_photo(tmp_path)
     events = []
-    report = match_photo(photo, tmp_path / "out", MatchOptions(size=64, quality="draft", iterations=2),
+    report = match_photo(photo, tmp_path / "out", MatchOptions(size=64, quality="draft", iterations=2, candidates=3),
                          progress=events.append)
     saved = json.loads((tmp_path / "out" / "report.json").read_text())
     assert saved["graph"] == report["graph"]
@@ -231,6 +232,17 @@ def test_match_without_a_graph_selects_fits_and_reports(tmp_path):
     assert [e["fraction"] for e in events] == sorted(e["fraction"] for e in events)
     selecting = [e["fraction"] for e in events if e["stage"] == "selecting"]
     assert selecting[-1] > selecting[0]  # the bar moves while the library is ranked
+
+
+def test_automatic_match_keeps_the_rankings_first_by_default(tmp_path):
+    from blender_match.pipeline import MatchOptions, fit_photo
+
+    assert MatchOptions().candidates == 1
+    photo = _synthetic_photo(tmp_path)
+    match = fit_photo(photo, MatchOptions(quality="draft", iterations=2))
+    assert [f["graph"] for f in match.report["fitted"]] == [match.report["ranking"][0]["graph"]] == [match.source]
+    with pytest.raises(OptionError, match="candidates 0"):
+        fit_photo(photo, MatchOptions(quality="draft", iterations=2, candidates=0))
 
 
 def test_match_with_a_named_graph_reports_its_start(tmp_path):
@@ -262,3 +274,32 @@ def test_train_command_writes_models_and_skips_up_to_date_graphs(tmp_path, capsy
     assert main(argv + ["--resume", "--force"]) == 0
     again = torch.load(tmp_path / "plaster.train.pt", weights_only=True)
     assert torch.equal(again["descriptors"], data["descriptors"]) and again["seconds"] == data["seconds"]
+
+
+def _render_of(name: str, size: int = 64) -> torch.Tensor:
+    from blender_match.diffmat.render import render_maps
+
+    return render_maps(load_library_graph(name)(size=size, seed=5)).clamp(0, 1)
+
+
+@pytest.mark.parametrize("margin, kept", [(0.0, "bricks"), (1000.0, "plaster")])
+def test_the_final_choice_handicaps_lower_ranked_graphs(monkeypatch, margin, kept):
+    """A target rendered from bricks, ranked with plaster first: by the fits' losses alone bricks
+    wins; with a handicap larger than any loss ratio, the ranking's first is kept."""
+    from blender_match.diffmat.descriptor import TextureDescriptor
+    from blender_match.diffmat.optim import TargetLoss
+    from blender_match.pipeline import match_schedule
+    from blender_match.selection import fit as fit_module
+
+    with torch.no_grad():
+        target = _render_of("bricks")
+    monkeypatch.setattr(fit_module, "RANK_MARGIN", margin)
+    ranking = []
+    for name in ("plaster", "bricks"):
+        graph = load_library_graph(name)
+        entry = {"graph": name, "distance": 0.0, "theta": graph.get_vector(), "start": "default", "nodes": 1,
+                 "params": 1}
+        ranking.append(entry)
+    loss = TargetLoss(target, TextureDescriptor(vgg=shared_vgg()))
+    best, fits = fit_module.select_and_fit(loss, ranking, 2, match_schedule("draft", 2))
+    assert best.graph == kept and [f.graph for f in fits] == ["plaster", "bricks"]
