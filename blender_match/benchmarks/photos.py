@@ -5,13 +5,15 @@ ground truth. Each photo (every ``*.jpg``, ``*.jpeg`` and ``*.png`` of the folde
 default ``../shared/data/photos_dev``, never part of the project) is read as ``match`` reads it
 (``load_photo`` at ``PHOTO_SIZE``) and goes through the product's automatic path
 (``pipeline.fit_photo``, ``match`` without writing: every library graph ranked by its predicted
-start, the top ``AUTO_CANDIDATES`` fitted under one shared budget, the best kept; graph seed
+start, the top ``pipeline.AUTO_CANDIDATES`` fitted, the best kept; graph seed
 ``SEED``). Per photo the row gives:
 
-- ``graph`` (the kept graph), ``top3`` (the ranking's first three, the ones fitted) and
+- ``graph`` (the kept graph), ``top3`` (the ranking's first three) and
   ``family_match``: whether the kept graph belongs to the photo's category's family in
   ``photo_categories.json`` (the table says per category which graphs count, and why; a category
   with an empty family, or one not in the table, is one the library cannot express: always a miss);
+- ``ranking`` and ``fitted`` (results.json only): the ranking's entries and each fitted
+  candidate's summary, as report.json gives them, so that the final choice can be studied;
 - ``seconds``: wall time of selection and fitting (the photo's reading, the render below and the
   maps ``match`` writes afterwards are not part of it);
 - ``loss``: the kept fit's final descriptor loss, the quantity the fit minimises;
@@ -19,14 +21,18 @@ start, the top ``AUTO_CANDIDATES`` fitted under one shared budget, the best kept
   between the photo and the kept material rendered under the flash at ``PHOTO_SIZE`` with the
   fit's seed.
 
-A photo's category is the first attribute of its line in the folder's ``SOURCES.tsv`` (columns
-``file`` and ``attributes``; ``-`` means misc) or, without one, the first ``_``-separated word of
-its name that is a category of the table (``real_asphalt_gravel_desch18.png``: asphalt), else its
-first word. A photo that fails (unreadable, a fit error) gets its error in its row, counts as a
-miss and the run goes on. The summary: photos, the share of family matches, the medians of the
-two distances and of the seconds, the total seconds. With ``out``: ``results.json`` (config, rows,
+A photo's category is the one the table's ``photos`` section gives it by name (photos whose
+listed category names a condition or nothing, labelled by looking at them, each with its reason),
+else the first attribute of its line in the folder's ``SOURCES.tsv`` (columns ``file`` and
+``attributes``; ``-`` means misc) or, without one, the first ``_``-separated word of its name that
+is a category of the table (``real_asphalt_gravel_desch18.png``: asphalt), else its first word. A
+photo that fails (unreadable, a fit error) gets its error in its row, counts as a miss and the run
+goes on. The summary: photos, the share of family matches, the same share by the listed categories
+alone (``family_match_share_listed``: a relabelled photo's match counts as a miss there), the
+medians of the two distances and of the seconds, the total seconds. With ``out``: ``results.json`` (config, rows,
 summary), ``results.md`` (the tables; the photos themselves never go into it) and ``sheet.png``
-(per photo: photo | render | the kept graph, category and match). ``quick``: the draft preset.
+(per photo: photo | render | the kept graph, category and match). ``quick``: the draft preset;
+``candidates``: how many of the ranking's graphs each match fits (``MatchOptions.candidates``).
 """
 from __future__ import annotations
 
@@ -79,6 +85,16 @@ def load_families(path: Path = CATEGORIES_FILE) -> dict[str, list[str]]:
         raise OptionError(f"{path}: not a photo category table ({exc})") from None
 
 
+def load_photo_labels(path: Path = CATEGORIES_FILE) -> dict[str, str]:
+    """Photo file name -> the category the table gives it where its listed category names no
+    material (``photos`` of the table: judged by looking at the photo, with the reason)."""
+    try:
+        table = json.loads(Path(path).read_text(encoding="utf-8")).get("photos", {})
+        return {name: entry["category"] for name, entry in table.items()}
+    except (OSError, ValueError, KeyError, TypeError, AttributeError) as exc:
+        raise OptionError(f"{path}: not a photo category table ({exc})") from None
+
+
 def find_photos(folder: Path) -> list[Path]:
     """The folder's photos, sorted; [] when it is absent."""
     if not folder.is_dir():
@@ -118,21 +134,26 @@ def evaluate(photo: torch.Tensor, options: MatchOptions) -> tuple[dict, torch.Te
     seconds = time.perf_counter() - started
     with torch.no_grad():
         render = render_maps(match.graph(size=photo.shape[-1], seed=options.seed))[:1].clamp(0, 1).cpu()
-    return {"graph": match.graph.name, "top3": [f["graph"] for f in match.report["fitted"]],
+    return {"graph": match.graph.name, "top3": [e["graph"] for e in match.report["ranking"][:3]],
             "seconds": round(seconds, 2), "loss": match.report["loss_final"],
-            "patch_distance": patch_distance(photo, render), "colour_distance": colour_distance(photo, render)}, render
+            "patch_distance": patch_distance(photo, render), "colour_distance": colour_distance(photo, render),
+            "ranking": match.report["ranking"], "fitted": match.report["fitted"]}, render
 
 
-def summarise(rows: list[dict], seconds: float) -> dict:
-    """Photos, share of family matches (a failed photo is a miss), medians over the photos that
-    were fitted, total seconds of the run."""
+def summarise(rows: list[dict], seconds: float, listed_misses: int = 0) -> dict:
+    """Photos, share of family matches (a failed photo is a miss), the same share with the
+    ``listed_misses`` matches the table's photo labels made counted as misses (the photo's
+    listed category names no material), medians over the photos that were fitted, total
+    seconds of the run."""
     done = [r for r in rows if not r["error"]]
+    matches = sum(r["family_match"] for r in rows)
 
     def median(key):
         return round(statistics.median(r[key] for r in done), 3) if done else None
 
     return {"photos": len(rows), "failed": len(rows) - len(done),
-            "family_match_share": round(sum(r["family_match"] for r in rows) / len(rows), 3),
+            "family_match_share": round(matches / len(rows), 3),
+            "family_match_share_listed": round((matches - listed_misses) / len(rows), 3),
             "median_patch_distance": median("patch_distance"), "median_colour_distance": median("colour_distance"),
             "median_seconds": median("seconds"), "total_seconds": round(seconds, 1)}
 
@@ -151,7 +172,7 @@ def markdown(rows: list[dict], summary: dict, config: dict) -> str:
         "# bench photos",
         f"{config['photos_dir']}: quality {config['quality']}"
         + (f", {config['iterations']} iterations" if config["iterations"] else "")
-        + f", top {AUTO_CANDIDATES} fitted, seed {SEED}, photo size {config['photo_size']} px, "
+        + f", top {config['k']} fitted, seed {SEED}, photo size {config['photo_size']} px, "
         f"device {config['device']}, "
         f"torch threads {config['threads']}. family match: the kept graph is in the category's family "
         "(photo_categories.json); distances: photo against the kept material's flash render (lower is closer); "
@@ -196,7 +217,8 @@ def sheet_png(entries: list[tuple]) -> bytes:
 
 
 def run(device: str = "cpu", photos=None, quick: bool = False, quality: str | None = None, out: Path | None = None,
-        limit: int | None = None, iterations: int | None = None, **_ignored) -> list[dict]:
+        limit: int | None = None, iterations: int | None = None, candidates: int = AUTO_CANDIDATES,
+        **_ignored) -> list[dict]:
     """Match every photo of ``photos`` (module docstring): the per-photo rows then the "all" row;
     [] with one line on stderr when the folder holds no photo. ``limit``: the first photos only."""
     quality = quality or ("draft" if quick else "balanced")
@@ -210,13 +232,14 @@ def run(device: str = "cpu", photos=None, quick: bool = False, quality: str | No
         return []
     families = load_families()
     listed = listed_categories(folder)
+    labels = load_photo_labels()
     torch_device = resolve_device(device)
-    options = MatchOptions(quality=quality, seed=SEED, device=device, iterations=iterations)
+    options = MatchOptions(quality=quality, seed=SEED, device=device, iterations=iterations, candidates=candidates)
     shared_vgg(torch_device)  # loaded once, before the clock of the first photo starts
     rows, entries = [], []
     started = time.perf_counter()
     for index, path in enumerate(paths):
-        category = listed.get(path.name) or name_category(path.stem, families)
+        category = labels.get(path.name) or listed.get(path.name) or name_category(path.stem, families)
         row: dict[str, Any] = {c: None for c in COLUMNS} | {"photo": path.name, "category": category, "graph": "",
                                                             "top3": [], "family_match": False, "error": ""}
         photo = render = None
@@ -233,16 +256,19 @@ def run(device: str = "cpu", photos=None, quick: bool = False, quality: str | No
                 if not row["error"] else f"FAILED: {row['error']}")
         print(f"[{time.perf_counter() - started:6.0f}s] {index + 1}/{len(paths)} {path.name} ({category}): {done}",
               file=sys.stderr, flush=True)
-    summary = summarise(rows, time.perf_counter() - started)
+    relabelled = [r for r in rows if r["photo"] in labels and r["family_match"]]
+    listed_misses = sum(r["graph"] not in families.get(listed.get(r["photo"], MISC), ()) for r in relabelled)
+    summary = summarise(rows, time.perf_counter() - started, listed_misses)
     if out is not None:
         out = Path(out)
         out.mkdir(parents=True, exist_ok=True)
-        config = {"photos_dir": str(folder), "quality": quality, "iterations": iterations, "k": AUTO_CANDIDATES,
+        config = {"photos_dir": str(folder), "quality": quality, "iterations": iterations, "k": options.candidates,
                   "seed": SEED,
                   "photo_size": PHOTO_SIZE, "device": str(torch_device), "threads": torch.get_num_threads(),
-                  "categories": {c: families.get(c, []) for c in sorted({r["category"] for r in rows})}}
+                  "categories": {c: families.get(c, []) for c in sorted({r["category"] for r in rows})},
+                  "labelled": {r["photo"]: r["category"] for r in rows if r["photo"] in labels}}
         write_atomic(out / "results.json", json.dumps({"config": config, "rows": rows, "summary": summary},
                                                       indent=1).encode("utf-8"), overwrite=True)
         write_atomic(out / "results.md", markdown(rows, summary, config).encode("utf-8"), overwrite=True)
         write_atomic(out / "sheet.png", sheet_png(entries), overwrite=True)
-    return [{**r, "top3": ", ".join(r["top3"])} for r in rows] + [summary_row(summary)]
+    return [{c: r[c] for c in COLUMNS} | {"top3": ", ".join(r["top3"])} for r in rows] + [summary_row(summary)]

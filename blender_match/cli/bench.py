@@ -25,6 +25,8 @@ def add_parser(sub):
     p.add_argument("--photos", type=Path, help="folder of photos to match (photos; default ../shared/data/photos_dev)")
     p.add_argument("--iterations", type=int,
                    help="iterations of each fit, rescaling the quality preset (photos, recovery, selection)")
+    p.add_argument("--candidates", type=int,
+                   help="graphs automatic matching fits per photo (photos; default: match's default)")
     p.add_argument("--out", type=Path,
                    help="folder for results.json, results.md and charts (accuracy, recovery, photos)")
     p.add_argument("--json", action="store_true", help="print rows as JSON")
@@ -49,7 +51,7 @@ def run(args) -> int:
     module = importlib.import_module(f"blender_match.benchmarks.{args.what}")
     options = {"files": args.files, "graphs": args.graphs, "paper_iterations": args.paper_iterations,
                "quality": args.quality, "quick": args.quick or None, "out": args.out, "photos": args.photos,
-               "iterations": args.iterations}
+               "iterations": args.iterations, "candidates": args.candidates}
     extra = {k: v for k, v in options.items() if v is not None}
     rows = module.run(device=args.device, **extra)
     if args.json:

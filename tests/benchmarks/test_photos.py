@@ -11,6 +11,7 @@ from PIL import Image
 
 from blender_match.benchmarks import photos as bench_photos
 from blender_match.cli import main
+from blender_match.errors import OptionError
 from blender_match.diffmat.render import render_maps
 from blender_match.library import library_names, load_library_graph
 
@@ -22,6 +23,18 @@ def test_category_table_names_library_graphs():
         assert set(entry["graphs"]) <= known, category
         assert entry["why"].strip(), category
     assert bench_photos.load_families()["misc"] == []
+    photos = json.loads(bench_photos.CATEGORIES_FILE.read_text(encoding="utf-8"))["photos"]
+    for name, entry in photos.items():
+        assert entry["category"] in table and table[entry["category"]]["graphs"], name
+        assert entry["why"].strip(), name
+    assert bench_photos.load_photo_labels() == {name: entry["category"] for name, entry in photos.items()}
+
+
+def test_photo_labels_refuse_a_broken_table(tmp_path):
+    path = tmp_path / "table.json"
+    path.write_text('{"categories": {}, "photos": {"a.jpg": "stone"}}')
+    with pytest.raises(OptionError, match="table.json: not a photo category table"):
+        bench_photos.load_photo_labels(path)
 
 
 def test_categories_from_sources_then_names(tmp_path):
@@ -58,6 +71,8 @@ def test_run_writes_results_and_survives_a_broken_photo(one_photo, tmp_path):
     assert results["summary"]["failed"] == 1
     assert row["error"] == "" and row["category"] == "plaster"
     assert row["graph"] in row["top3"] and len(row["top3"]) == 3
+    assert row["top3"] == [e["graph"] for e in row["ranking"][:3]] and [f["graph"] for f in row["fitted"]] == [row["graph"]]
+    assert results["summary"]["family_match_share_listed"] == results["summary"]["family_match_share"]
     assert row["family_match"] == (row["graph"] == "plaster")
     for key in ("seconds", "loss", "patch_distance", "colour_distance"):
         assert math.isfinite(row[key]), key
