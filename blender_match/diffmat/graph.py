@@ -26,6 +26,7 @@ import torch
 from torch import nn
 
 from ..vocabulary import USAGES
+from .calibration import CALIBRATION, BaseColourGain
 from .errors import DiffMatError
 from .nodes.module import EvalContext, Node, ParameterSet
 from .toposort import topological_order
@@ -78,6 +79,7 @@ class MaterialGraph(nn.Module):
         self.outputs: dict[str, Ref] = {}
         self._cache: dict[tuple, tuple[torch.Tensor, ...]] = {}
         self._plan: EvalPlan | None = None
+        self.calibration = BaseColourGain()
 
     # ---- building -------------------------------------------------------------------------
     def add(self, name: str, node: Node | str, inputs: dict | None = None, *, seed: int = 0,
@@ -89,6 +91,8 @@ class MaterialGraph(nn.Module):
         """
         if not _NAME.match(name):
             raise DiffMatError(f"graph {self.name}: node name {name!r} is not an identifier")
+        if name == CALIBRATION:
+            raise DiffMatError(f"graph {self.name}: node name {name!r} is reserved for the graph's calibration")
         if name in self.nodes:
             raise DiffMatError(f"graph {self.name}: node {name!r} already exists")
         if isinstance(node, str):
@@ -179,8 +183,9 @@ class MaterialGraph(nn.Module):
 
     # ---- parameters -------------------------------------------------------------------------
     def parameter_sets(self) -> dict[str, ParameterSet]:
-        """Every holder of parameters by name: the nodes (a subclass may add graph-level sets)."""
-        return dict(self.node_items())
+        """Every holder of parameters by name: the nodes and the photometric ``calibration`` (a
+        subclass may add graph-level sets)."""
+        return {**dict(self.node_items()), CALIBRATION: self.calibration}
 
     def may_train(self, owner: str, param: str) -> bool:
         """Whether ``owner.param`` may be optimised (a subclass may pin more, e.g. bound ones)."""
@@ -313,7 +318,8 @@ class MaterialGraph(nn.Module):
         """Evaluate the graph at ``size`` pixels with graph seed ``seed``.
 
         ``theta`` (B, P) evaluates a batch of normalised parameter vectors. Returns the named
-        outputs; their batch is B (or 1 when nothing varies in the batch).
+        outputs; their batch is B (or 1 when nothing varies in the batch). The ``basecolor`` output
+        carries the photometric calibration's gain (``diffmat.calibration``; none by default).
         """
         if not self.outputs:
             raise DiffMatError(f"graph {self.name}: no outputs set")
@@ -338,7 +344,10 @@ class MaterialGraph(nn.Module):
             values[n] = result
             for src in step.frees:
                 del values[src]
-        return {u: values[n][i] for u, n, i in plan.outputs}
+        out = {u: values[n][i] for u, n, i in plan.outputs}
+        if "basecolor" in out:
+            out["basecolor"] = self.calibration.scale(out["basecolor"])
+        return out
 
     def clear_cache(self):
         """Drop cached outputs (after changing frozen parameters by hand)."""
