@@ -409,7 +409,7 @@ def _worker(python: str, request: dict) -> client.WorkerJob:
 
 
 def start_match(context, *, photo=None, image=None, graph="AUTO", size=2048, quality=DEFAULT_QUALITY,
-                device="default", seed=0, pack=False, tiling=1.0, iterations=0) -> MatchJob:
+                device="default", seed=0, pack=False, tiling=1.0, iterations=0, calibrate=True) -> MatchJob:
     """Start matching the photo (a file path, or an image datablock ``image``) with ``graph``
     ('AUTO': automatic selection); JobError when it cannot start (nothing changed then)."""
     scene = context.scene
@@ -439,7 +439,7 @@ def start_match(context, *, photo=None, image=None, graph="AUTO", size=2048, qua
         raise JobError(str(exc)) from None
     options = {"graph": None if auto else graph, "size": int(size), "quality": quality, "seed": int(seed),
                "device": addon.resolve_device(device, context), "overwrite": False,
-               "iterations": int(iterations) if iterations else None}
+               "iterations": int(iterations) if iterations else None, "calibrate": bool(calibrate)}
     try:
         worker = _worker(python, protocol.match_request(path, out_dir, options))
     except BaseException:

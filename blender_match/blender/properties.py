@@ -70,6 +70,9 @@ class BLENDER_MATCH_PG_settings(bpy.types.PropertyGroup):
     device: EnumProperty(name="Device", items=[addon.PREFERENCES_DEVICE, *addon.DEVICE_ITEMS], default="default")
     pack: BoolProperty(name="Pack Images", default=False,
                        description="Pack the maps into the .blend (always done while it is unsaved)")
+    calibrate: BoolProperty(name="Match Photo Colour", default=True,
+                            description="Scale the fitted base colour to the photo's exposure and white balance "
+                                        "(off: the graph's own colours)")
     tiling: FloatProperty(name="Tiling", default=1.0, min=0.001, soft_min=0.1, soft_max=16.0,
                           description="Repeats of the texture per UV unit")
     rerender_size: EnumProperty(name="Re-render Size", items=addon.SIZE_ITEMS, default="4K")

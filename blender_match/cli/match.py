@@ -25,6 +25,9 @@ def add_parser(sub):
     p.add_argument("--candidates", type=int, default=AUTO_CANDIDATES,
                    help=f"without --graph: fit this many of the best-ranked graphs and keep the best fit "
                         f"(default {AUTO_CANDIDATES}; 3 is the MATch paper's)")
+    p.add_argument("--no-calibration", dest="calibrate", action="store_false",
+                   help="keep the fitted base colour as the graph gives it (default: scale it to the photo's "
+                        "exposure and white balance)")
     p.add_argument("--overwrite", action="store_true", help="replace files already in --out")
     p.add_argument("--json", action="store_true", help="print the report as JSON instead of a summary")
     p.set_defaults(run=run)
@@ -54,7 +57,7 @@ class _MatchProgress:
 def run(args) -> int:
     options = MatchOptions(graph=args.graph, size=args.size, quality=args.quality, seed=args.seed,
                            device=args.device, overwrite=args.overwrite, iterations=args.iterations,
-                           candidates=args.candidates)
+                           candidates=args.candidates, calibrate=args.calibrate)
     display = _MatchProgress()
     try:
         report = match_photo(args.photo, args.out, options, progress=display)

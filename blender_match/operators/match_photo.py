@@ -43,6 +43,9 @@ class BLENDER_MATCH_OT_match_photo(JobRunner, bpy.types.Operator):
     seed: IntProperty(name="Seed", default=0, min=0, options=_SKIP, description="The graph's random seed")
     pack: BoolProperty(name="Pack Images", default=False, options=_SKIP,
                        description="Pack the maps into the .blend (always done while it is unsaved)")
+    calibrate: BoolProperty(name="Match Photo Colour", default=True, options=_SKIP,
+                            description="Scale the fitted base colour to the photo's exposure and white balance "
+                                        "(off: the graph's own colours)")
     tiling: FloatProperty(name="Tiling", default=1.0, min=0.001, options=_SKIP,
                           description="Repeats of the texture per UV unit")
     iterations: IntProperty(name="Iterations", default=0, min=0, options={'HIDDEN', 'SKIP_SAVE'},
@@ -85,9 +88,9 @@ class BLENDER_MATCH_OT_match_photo(JobRunner, bpy.types.Operator):
         return {"photo": settings.photo_path}
 
     def _fit_options(self, settings) -> dict:
-        """Graph, size, quality, device, packing and tiling: the operator's when set, else the
-        panel's (whose size is a "1K"/"2K"/"4K" choice)."""
-        names = ("graph", "size", "quality", "device", "pack", "tiling")
+        """Graph, size, quality, device, colour calibration, packing and tiling: the operator's when
+        set, else the panel's (whose size is a "1K"/"2K"/"4K" choice)."""
+        names = ("graph", "size", "quality", "device", "calibrate", "pack", "tiling")
         options = {name: getattr(self, name) for name in names}
         if settings is None:
             return options

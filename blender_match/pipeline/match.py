@@ -17,6 +17,7 @@ from pathlib import Path
 import torch
 
 from ..diffmat import MaterialGraph
+from ..diffmat.calibration import GAIN, solve_gain
 from ..diffmat.descriptor import TextureDescriptor
 from ..diffmat.optim import FitResult, Schedule, TargetLoss, fit
 from ..photo import load_photo
@@ -141,8 +142,10 @@ def _fit_auto(job: JobProgress, target: torch.Tensor, options: MatchOptions, sch
 
 def _fit(job: JobProgress, photo, options: MatchOptions, schedule: Schedule, device: torch.device,
          check_outputs: OutputsCheck | None) -> Match:
-    """Read the photo and fit (named or automatic): what ``fit_photo`` and ``match_photo`` share.
-    The photo is moved to the device once, here."""
+    """Read the photo and fit (named or automatic), then calibrate the fitted graph's base colour
+    to the photo's exposure and white balance (``diffmat.calibration``) unless
+    ``options.calibrate`` is off: what ``fit_photo`` and ``match_photo`` share. The photo is moved
+    to the device once, here."""
     job.stage(READING_PHOTO)
     if isinstance(photo, torch.Tensor):
         target, photo_name = check_photo(photo), "photo"
@@ -151,6 +154,9 @@ def _fit(job: JobProgress, photo, options: MatchOptions, schedule: Schedule, dev
     target = target.to(device)
     branch = _fit_named if options.graph else _fit_auto
     graph, source, report = branch(job, target, options, schedule, photo_name, check_outputs)
+    if options.calibrate and "basecolor" in graph.outputs:
+        gain = solve_gain(graph, target, seed=options.seed)
+        report["calibration"] = {GAIN: [round(float(v), 4) for v in gain]}
     return Match(graph, source, target, device, report)
 
 

@@ -21,7 +21,8 @@ class MatchOptions:
     """What to match and how. ``graph``: a library graph's name, a bundled graph's name or a
     ``.sbs`` path (None: automatic selection). ``iterations`` overrides the quality preset's
     iteration count (tests and scripted drafts). ``candidates``: how many of the best-ranked graphs
-    automatic selection fits, keeping the best final loss (3: the paper's)."""
+    automatic selection fits, keeping the best final loss (3: the paper's). ``calibrate``: solve the
+    photo's exposure and white balance as a gain on the fitted base colour (``diffmat.calibration``)."""
 
     graph: str | None = None
     size: int = 2048
@@ -31,6 +32,7 @@ class MatchOptions:
     overwrite: bool = False
     iterations: int | None = None
     candidates: int = AUTO_CANDIDATES
+    calibrate: bool = True
 
 
 def check_size(size) -> int:

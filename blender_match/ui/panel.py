@@ -30,6 +30,7 @@ def draw_match_settings(layout, settings):
     col.prop(settings, "quality")
     col.prop(settings, "size")
     col.prop(settings, "device")
+    col.prop(settings, "calibrate")
     row = col.row(align=True)
     row.prop(settings, "tiling")
     row.prop(settings, "pack", text="Pack", toggle=True)

@@ -300,6 +300,9 @@ def test_match_builds_a_new_material_in_the_active_slot(session):
     assert set(mat["sliders"]) == set(exposed) == {"color", "bump_scale", "bumps", "trowel", "roughness", "relief"}
     for name, value in mat["sliders"].items():
         assert value == pytest.approx(exposed[name], abs=1e-5)
+    # the photo's exposure and white balance, calibrated by default, stored for re-renders
+    assert mat["params"]["params"]["calibration.basecolor_gain"] == pytest.approx(
+        report["calibration"]["basecolor_gain"], abs=1e-4)
     last = session["last"]
     assert last["state"] == "finished" and last["material"] == mat["name"] and last["graph"] == "plaster"
     assert isinstance(last["loss"], float) and last["seconds"] > 0

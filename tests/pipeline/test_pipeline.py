@@ -5,12 +5,17 @@ from __future__ import annotations
 
 import json
 
+import numpy as np
 import pytest
 import torch
+from PIL import Image
 
 from blender_match.cli import main
+from blender_match.diffmat.calibration import unclipped_level
+from blender_match.diffmat.render import linear_to_srgb, render_maps, srgb_to_linear
 from blender_match.errors import BlenderMatchError, Cancelled
 from blender_match.image_files import write_png
+from blender_match.photo import load_photo
 from blender_match.pipeline import MatchOptions, fit_photo, match_photo, render_params
 from blender_match.safe_files import FileWriteError
 
@@ -65,6 +70,26 @@ def test_same_seed_same_maps_and_rerender_at_another_size(photo, tmp_path):
     assert report["rendered_from"].endswith("params.json") and report["size"] == 128
     params = json.loads((tmp_path / "a" / "params.json").read_text())
     assert params["source"] == "plaster" and params["seed"] == 0 and params["params"]
+    assert params["params"]["calibration.basecolor_gain"] != [1.0, 1.0, 1.0]  # the photo's exposure, carried
+    render_params(tmp_path / "a" / "params.json", tmp_path / "same", 64)
+    same, first = (np.asarray(Image.open(tmp_path / d / "basecolor.png"), dtype=np.int16) for d in ("same", "a"))
+    assert np.abs(same - first).max() <= 1  # params.json rounds to 6 decimals
+
+
+@pytest.mark.parametrize("exposure", [0.6, 1.5])
+def test_the_fitted_base_colour_takes_the_photos_exposure_and_white_balance(photo, exposure):
+    """The photo, darkened and tinted in linear light: the calibrated render has its level (``unclipped_level``)
+    (over unclipped pixels); without calibration the gain stays one."""
+    image = load_photo(photo, 128)
+    shifted = linear_to_srgb(srgb_to_linear(image) * exposure * torch.tensor([1.0, 0.85, 0.7]).view(1, 3, 1, 1))
+    match = fit_photo(shifted, MatchOptions(**TINY))
+    with torch.no_grad():
+        rendered = render_maps(match.graph(size=128, seed=0))[:1]
+    assert torch.allclose(unclipped_level(rendered), unclipped_level(shifted), rtol=0.03)
+    assert match.report["calibration"]["basecolor_gain"] == pytest.approx(match.graph.calibration.gain().tolist(),
+                                                                          abs=1e-4)
+    plain = fit_photo(shifted, MatchOptions(**TINY, calibrate=False))
+    assert "calibration" not in plain.report and torch.equal(plain.graph.calibration.gain(), torch.ones(3))
 
 
 def test_fit_photo_returns_the_match_without_writing(photo, tmp_path, monkeypatch):
