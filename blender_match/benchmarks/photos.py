@@ -137,7 +137,8 @@ def evaluate(photo: torch.Tensor, options: MatchOptions) -> tuple[dict, torch.Te
     return {"graph": match.graph.name, "top3": [e["graph"] for e in match.report["ranking"][:3]],
             "seconds": round(seconds, 2), "loss": match.report["loss_final"],
             "patch_distance": patch_distance(photo, render), "colour_distance": colour_distance(photo, render),
-            "ranking": match.report["ranking"], "fitted": match.report["fitted"]}, render
+            "ranking": match.report["ranking"], "fitted": match.report["fitted"],
+            "calibration": match.report.get("calibration")}, render
 
 
 def summarise(rows: list[dict], seconds: float, listed_misses: int = 0) -> dict:
