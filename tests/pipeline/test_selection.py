@@ -6,6 +6,8 @@ import json
 import pytest
 import torch
 
+from blender_match.diffmat.calibration import CLIP_LEVEL
+from blender_match.diffmat.render import FlashCamera, linear_to_srgb, render_maps, srgb_to_linear
 from blender_match.errors import OptionError
 from blender_match.library import builtin_names, library_names, load_library_graph
 from blender_match.selection import predictor
@@ -148,6 +150,19 @@ def test_the_final_choice_prefers_the_simpler_graph_on_a_near_tie():
     assert order_by_simplicity(clear)[0]["graph"] == "big"
 
 
+@pytest.mark.parametrize("name", ["brushed_metal", "granite"])
+def test_a_colour_cast_and_a_clipped_highlight_keep_the_true_graph_first(name):
+    """A library graph's render under a flash twice too strong, with a warm white balance (linear
+    gains 1.5, 1, 0.6): part of it clips, its colours are off, and the full library's ranking still
+    puts the graph first."""
+    graph = load_library_graph(name)
+    with torch.no_grad():
+        hot = render_maps(graph(size=256, seed=11), FlashCamera(power=1.6))[:1]
+    target = linear_to_srgb(srgb_to_linear(hot) * torch.tensor([1.5, 1.0, 0.6]).view(1, 3, 1, 1))
+    assert float((target >= CLIP_LEVEL).any(dim=1).float().mean()) > 0.1
+    assert rank_graphs(target)[0]["graph"] == name
+
+
 def test_missing_models_say_how_to_create_them(tmp_path):
     with pytest.raises(NoSelectionModels, match="blender-match train --all"):
         rank_graphs(torch.rand(1, 3, 64, 64), directory=tmp_path)
@@ -277,8 +292,6 @@ def test_train_command_writes_models_and_skips_up_to_date_graphs(tmp_path, capsy
 
 
 def _render_of(name: str, size: int = 64) -> torch.Tensor:
-    from blender_match.diffmat.render import render_maps
-
     return render_maps(load_library_graph(name)(size=size, seed=5)).clamp(0, 1)
 
 
