@@ -76,12 +76,22 @@ def default_photos() -> Path:
     return photos_dir().parent / "photos_dev"
 
 
+def read_table(path: Path = CATEGORIES_FILE) -> dict:
+    """The category table's JSON object (OptionError naming the file when it is unreadable)."""
+    try:
+        table = json.loads(Path(path).read_text(encoding="utf-8"))
+    except (OSError, ValueError) as exc:
+        raise OptionError(f"{path}: not a photo category table ({exc})") from None
+    if not isinstance(table, dict):
+        raise OptionError(f"{path}: not a photo category table (not a JSON object)")
+    return table
+
+
 def load_families(path: Path = CATEGORIES_FILE) -> dict[str, list[str]]:
     """Category -> the library graphs that count as its family."""
     try:
-        table = json.loads(Path(path).read_text(encoding="utf-8"))["categories"]
-        return {category: list(entry["graphs"]) for category, entry in table.items()}
-    except (OSError, ValueError, KeyError, TypeError) as exc:
+        return {category: list(entry["graphs"]) for category, entry in read_table(path)["categories"].items()}
+    except (KeyError, TypeError, AttributeError) as exc:
         raise OptionError(f"{path}: not a photo category table ({exc})") from None
 
 
@@ -89,9 +99,8 @@ def load_photo_labels(path: Path = CATEGORIES_FILE) -> dict[str, str]:
     """Photo file name -> the category the table gives it where its listed category names no
     material (``photos`` of the table: judged by looking at the photo, with the reason)."""
     try:
-        table = json.loads(Path(path).read_text(encoding="utf-8")).get("photos", {})
-        return {name: entry["category"] for name, entry in table.items()}
-    except (OSError, ValueError, KeyError, TypeError, AttributeError) as exc:
+        return {name: entry["category"] for name, entry in read_table(path).get("photos", {}).items()}
+    except (KeyError, TypeError, AttributeError) as exc:
         raise OptionError(f"{path}: not a photo category table ({exc})") from None
 
 
@@ -237,10 +246,11 @@ def run(device: str = "cpu", photos=None, quick: bool = False, quality: str | No
     torch_device = resolve_device(device)
     options = MatchOptions(quality=quality, seed=SEED, device=device, iterations=iterations, candidates=candidates)
     shared_vgg(torch_device)  # loaded once, before the clock of the first photo starts
-    rows, entries = [], []
+    rows, entries, listed_misses = [], [], 0
     started = time.perf_counter()
     for index, path in enumerate(paths):
-        category = labels.get(path.name) or listed.get(path.name) or name_category(path.stem, families)
+        listed_category = listed.get(path.name) or name_category(path.stem, families)
+        category = labels.get(path.name) or listed_category
         row: dict[str, Any] = {c: None for c in COLUMNS} | {"photo": path.name, "category": category, "graph": "",
                                                             "top3": [], "family_match": False, "error": ""}
         photo = render = None
@@ -252,13 +262,12 @@ def run(device: str = "cpu", photos=None, quick: bool = False, quality: str | No
             row["error"] = f"{type(exc).__name__}: {exc}"
         rows.append(row)
         entries.append((photo, render, row))
+        listed_misses += row["family_match"] and row["graph"] not in families.get(listed_category, ())
         done = (f"kept {row['graph']} ({'match' if row['family_match'] else 'miss'}), top3 {', '.join(row['top3'])}, "
                 f"patch {row['patch_distance']:.1f}, colour {row['colour_distance']:.1f}, {row['seconds']:.0f}s"
                 if not row["error"] else f"FAILED: {row['error']}")
         print(f"[{time.perf_counter() - started:6.0f}s] {index + 1}/{len(paths)} {path.name} ({category}): {done}",
               file=sys.stderr, flush=True)
-    relabelled = [r for r in rows if r["photo"] in labels and r["family_match"]]
-    listed_misses = sum(r["graph"] not in families.get(listed.get(r["photo"], MISC), ()) for r in relabelled)
     summary = summarise(rows, time.perf_counter() - started, listed_misses)
     if out is not None:
         out = Path(out)
