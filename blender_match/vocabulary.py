@@ -77,6 +77,11 @@ DEFAULT_DEVICE = "auto"
 
 # The files of a result folder besides the maps (``MaterialOutput.file``).
 PARAMS_FILE, COMPARISON_FILE, REPORT_FILE = "params.json", "comparison.png", "report.json"
+# How a fitted material meets its photo: a graph-level parameter set of that name holds the base
+# colour's gain and the zoom (texture periods across the photo); params.json names them
+# "calibration.basecolor_gain" and "calibration.zoom", report.json's "calibration" object the same,
+# with the photo's flash falloff beside them (a property of the photo: no map or parameter has it).
+CALIBRATION, GAIN, ZOOM, FALLOFF = "calibration", "basecolor_gain", "zoom", "falloff"
 
 # The stages of a match, in order, as progress events name them ("selecting" only without a graph).
 READING_PHOTO, SELECTING, FITTING, WRITING_MAPS = "reading photo", "selecting", "fitting", "writing maps"

@@ -18,8 +18,11 @@ start, the top ``pipeline.AUTO_CANDIDATES`` fitted, the best kept; graph seed
   maps ``match`` writes afterwards are not part of it);
 - ``loss``: the kept fit's final descriptor loss, the quantity the fit minimises;
 - ``patch_distance`` and ``colour_distance`` (``image_distances``: yardsticks no fit minimises)
-  between the photo and the kept material rendered under the flash at ``PHOTO_SIZE`` with the
-  fit's seed.
+  between the photo and the kept material rendered as ``comparison.png`` shows it: at
+  ``PHOTO_SIZE`` with the fit's seed, framed at its zoom, under the photo's flash as the fit
+  solved it (``Match.camera``); ``patch_distance_ideal_flash`` the same under the ideal flash, so
+  that what the material itself gained is told apart from what the solved light gained;
+- ``calibration``: the zoom, the gain and the falloff, as report.json gives them.
 
 A photo's category is the one the table's ``photos`` section gives it by name (photos whose
 listed category names a condition or nothing, labelled by looking at them, each with its reason),
@@ -50,6 +53,7 @@ import numpy as np
 import torch
 from PIL import Image, ImageDraw
 
+from ..diffmat.calibration import framed_maps
 from ..diffmat.optim import resize_square
 from ..diffmat.render import render_maps
 from ..errors import OptionError
@@ -142,12 +146,15 @@ def evaluate(photo: torch.Tensor, options: MatchOptions) -> tuple[dict, torch.Te
     match = fit_photo(photo, options)
     seconds = time.perf_counter() - started
     with torch.no_grad():
-        render = render_maps(match.graph(size=photo.shape[-1], seed=options.seed))[:1].clamp(0, 1).cpu()
+        maps = framed_maps(match.graph, photo.shape[-1], options.seed)
+        render = render_maps(maps, match.camera)[:1].clamp(0, 1).cpu()
+        ideal = render_maps(maps)[:1].clamp(0, 1).cpu()
     return {"graph": match.graph.name, "top3": [e["graph"] for e in match.report["ranking"][:3]],
             "seconds": round(seconds, 2), "loss": match.report["loss_final"],
             "patch_distance": patch_distance(photo, render), "colour_distance": colour_distance(photo, render),
+            "patch_distance_ideal_flash": patch_distance(photo, ideal),
             "ranking": match.report["ranking"], "fitted": match.report["fitted"],
-            "calibration": match.report.get("calibration")}, render
+            "calibration": match.report["calibration"]}, render
 
 
 def summarise(rows: list[dict], seconds: float, listed_misses: int = 0) -> dict:
@@ -165,6 +172,7 @@ def summarise(rows: list[dict], seconds: float, listed_misses: int = 0) -> dict:
             "family_match_share": round(matches / len(rows), 3),
             "family_match_share_listed": round((matches - listed_misses) / len(rows), 3),
             "median_patch_distance": median("patch_distance"), "median_colour_distance": median("colour_distance"),
+            "median_patch_distance_ideal_flash": median("patch_distance_ideal_flash"),
             "median_seconds": median("seconds"), "total_seconds": round(seconds, 1)}
 
 
@@ -228,7 +236,7 @@ def sheet_png(entries: list[tuple]) -> bytes:
 
 def run(device: str = "cpu", photos=None, quick: bool = False, quality: str | None = None, out: Path | None = None,
         limit: int | None = None, iterations: int | None = None, candidates: int = AUTO_CANDIDATES,
-        **_ignored) -> list[dict]:
+        zoom: float | None = 1.0, lighting: bool = True, **_ignored) -> list[dict]:
     """Match every photo of ``photos`` (module docstring): the per-photo rows then the "all" row;
     [] with one line on stderr when the folder holds no photo. ``limit``: the first photos only."""
     quality = quality or ("draft" if quick else "balanced")
@@ -244,7 +252,8 @@ def run(device: str = "cpu", photos=None, quick: bool = False, quality: str | No
     listed = listed_categories(folder)
     labels = load_photo_labels()
     torch_device = resolve_device(device)
-    options = MatchOptions(quality=quality, seed=SEED, device=device, iterations=iterations, candidates=candidates)
+    options = MatchOptions(quality=quality, seed=SEED, device=device, iterations=iterations, candidates=candidates,
+                           zoom=zoom, lighting=lighting)
     shared_vgg(torch_device)  # loaded once, before the clock of the first photo starts
     rows, entries, listed_misses = [], [], 0
     started = time.perf_counter()
@@ -273,7 +282,7 @@ def run(device: str = "cpu", photos=None, quick: bool = False, quality: str | No
         out = Path(out)
         out.mkdir(parents=True, exist_ok=True)
         config = {"photos_dir": str(folder), "quality": quality, "iterations": iterations, "k": options.candidates,
-                  "seed": SEED,
+                  "seed": SEED, "zoom": "auto" if zoom is None else zoom, "lighting": lighting,
                   "photo_size": PHOTO_SIZE, "device": str(torch_device), "threads": torch.get_num_threads(),
                   "categories": {c: families.get(c, []) for c in sorted({r["category"] for r in rows})},
                   "labelled": {r["photo"]: r["category"] for r in rows if r["photo"] in labels}}

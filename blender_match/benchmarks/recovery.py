@@ -34,6 +34,7 @@ from pathlib import Path
 
 import torch
 
+from ..diffmat.calibration import framed_maps
 from ..diffmat.render import render_maps
 from ..library import apply_params, builtin_names, load_library_graph, sample_params
 from ..pipeline import fit_named_graph, match_schedule, resolve_device
@@ -54,22 +55,25 @@ SIZE = 512
 
 
 def measures(graph, theta: torch.Tensor, photo: torch.Tensor, truth, size: int, map_seed: int) -> dict[str, float]:
-    """The three yardsticks of ``graph`` at ``theta`` (P,): the patch distance of its render with
-    ``FIT_SEED``, the map and novel-light errors of its maps with ``map_seed``."""
+    """The three yardsticks of ``graph`` at ``theta`` (P,), framed at its zoom (a fit that chose
+    another scale than the truth's pays for it in every measure): the patch distance of its
+    render with ``FIT_SEED``, the map and novel-light errors of its maps with ``map_seed``."""
     theta = theta.reshape(1, -1).to(photo.device)
     with torch.no_grad():
-        shown = graph(size=size, seed=FIT_SEED, theta=theta)
+        shown = framed_maps(graph, size, FIT_SEED, theta)
         render = render_maps(shown)[:1]
-        maps = shown if map_seed == FIT_SEED else graph(size=size, seed=map_seed, theta=theta)
+        maps = shown if map_seed == FIT_SEED else framed_maps(graph, size, map_seed, theta)
         novel = render_maps(maps, light_offset=NOVEL_LIGHT)[:1]
     rmse = map_rmse(maps, truth.maps)
     return {"patch": patch_distance(photo, render), "maps": statistics.fmean(rmse.values()),
             "novel": image_rmse(novel, truth.novel), **{f"rmse_{name}": value for name, value in rmse.items()}}
 
 
-def recover(name: str, k: int, size: int, presets, device, iterations: int | None = None) -> list[dict]:
+def recover(name: str, k: int, size: int, presets, device, iterations: int | None = None, zoom: float | None = 1.0,
+            lighting: bool = True) -> list[dict]:
     """One target (graph ``name``, variant ``k``) fitted by each preset (rescaled to ``iterations``
-    when given): one row per preset."""
+    when given; ``zoom`` and ``lighting`` as ``fit_named_graph`` takes them): one row per preset.
+    The measures render under the ideal flash the target was made with."""
     graph = load_library_graph(name).to(device)
     apply_params(graph, sample_params(name, k))
     truth_theta = graph.get_vector()
@@ -79,8 +83,8 @@ def recover(name: str, k: int, size: int, presets, device, iterations: int | Non
     for preset in presets:
         fresh = load_library_graph(name)
         started = time.perf_counter()
-        result, start, theta0 = fit_named_graph(fresh, name, photo, match_schedule(preset, iterations), FIT_SEED,
-                                                 device)
+        result, start, theta0, _ = fit_named_graph(fresh, name, photo, match_schedule(preset, iterations), FIT_SEED,
+                                                    device, zoom=zoom, lighting=lighting)
         seconds = time.perf_counter() - started
         before = measures(fresh, theta0, photo, truth, size, TRUTH_SEED)
         after = measures(fresh, result.theta, photo, truth, size, TRUTH_SEED)
@@ -129,7 +133,8 @@ def markdown(summary: list[dict], rows: list[dict], config: dict) -> str:
 
 
 def run(device: str = "cpu", graphs=None, quick: bool = False, quality: str | None = None, out: Path | None = None,
-        size: int | None = None, targets: int = 1, iterations: int | None = None, **_ignored) -> list[dict]:
+        size: int | None = None, targets: int = 1, iterations: int | None = None, zoom: float | None = 1.0,
+        lighting: bool = True, **_ignored) -> list[dict]:
     torch_device = resolve_device(device)
     names = list(graphs or (QUICK_GRAPHS if quick else builtin_names()))
     presets = tuple(quality.split(",")) if quality else PRESETS  # "draft,balanced": those two
@@ -138,7 +143,7 @@ def run(device: str = "cpu", graphs=None, quick: bool = False, quality: str | No
     started = time.perf_counter()
     for name in names:
         for t in range(targets):
-            rows.extend(recover(name, TARGET_K0 + t, size, presets, torch_device, iterations))
+            rows.extend(recover(name, TARGET_K0 + t, size, presets, torch_device, iterations, zoom, lighting))
             last = rows[-len(presets):]
             print(f"[{time.perf_counter() - started:6.0f}s] {name}: " + ", ".join(
                 f"{r['preset']} patch {r['patch_start_ratio']:.2f}->{r['patch_ratio']:.2f} "

@@ -37,7 +37,7 @@ from ..vocabulary import DEFAULT_QUALITY, FITTING, STAGE_TITLES
 from ..worker import client, protocol
 from ..worker.backend_setup import BackendSetup
 from . import addon, parameters
-from .material_builder import assign_material, build_material
+from .material_builder import assign_material, build_material, fitted_zoom
 
 JOBS: dict = {}      # scene key -> the scene's running job
 LAST: dict = {}      # scene key -> {"state", "message", "graph", "loss", "seconds", "material", "folder", ...}
@@ -409,7 +409,8 @@ def _worker(python: str, request: dict) -> client.WorkerJob:
 
 
 def start_match(context, *, photo=None, image=None, graph="AUTO", size=2048, quality=DEFAULT_QUALITY,
-                device="default", seed=0, pack=False, tiling=1.0, iterations=0, calibrate=True) -> MatchJob:
+                device="default", seed=0, pack=False, tiling=1.0, iterations=0, calibrate=True,
+                match_scale=False) -> MatchJob:
     """Start matching the photo (a file path, or an image datablock ``image``) with ``graph``
     ('AUTO': automatic selection); JobError when it cannot start (nothing changed then)."""
     scene = context.scene
@@ -439,7 +440,8 @@ def start_match(context, *, photo=None, image=None, graph="AUTO", size=2048, qua
         raise JobError(str(exc)) from None
     options = {"graph": None if auto else graph, "size": int(size), "quality": quality, "seed": int(seed),
                "device": addon.resolve_device(device, context), "overwrite": False,
-               "iterations": int(iterations) if iterations else None, "calibrate": bool(calibrate)}
+               "iterations": int(iterations) if iterations else None, "calibrate": bool(calibrate),
+               "zoom": None if match_scale else 1.0}
     try:
         worker = _worker(python, protocol.match_request(path, out_dir, options))
     except BaseException:
@@ -453,12 +455,18 @@ def start_match(context, *, photo=None, image=None, graph="AUTO", size=2048, qua
 
 
 def material_tiling(material, default: float = 1.0) -> float:
-    """The tiling of a matched material (its "Tiling" mapping node's scale)."""
+    """The user's tiling of a matched material: its "Tiling" mapping node's scale over the fit's
+    zoom (``material_builder.fitted_zoom``), so a rebuilt material keeps both without doubling the zoom."""
     tree = getattr(material, "node_tree", None)
     node = tree.nodes.get("Tiling") if tree is not None else None
-    if node is not None and node.type == "MAPPING":
-        return float(node.inputs["Scale"].default_value[0]) or default
-    return default
+    if node is None or node.type != "MAPPING":
+        return default
+    scale = float(node.inputs["Scale"].default_value[0])
+    try:
+        zoom = fitted_zoom(parameters.stored_params(material))
+    except parameters.ParameterError:
+        zoom = 1.0
+    return scale / zoom if scale > 0 else default
 
 
 def start_render(context, material, size: int, *, values: dict | None = None, device="default",

@@ -5,12 +5,16 @@ whose ``"maps"`` says, per usage, the file and whether the map is *flat* (every 
 its value is given). ``build_material`` makes a NEW material every time — it never reuses or
 changes an existing material or image, so rebuilding cannot destroy a user's edits:
 
-    Texture Coordinate (UV) -> Mapping (Scale = tiling) -> Image Texture per non-flat map
+    Texture Coordinate (UV) -> Mapping (Scale = tiling x zoom) -> Image Texture per non-flat map
         base colour (sRGB)             -> Principled "Base Color"
         roughness, metallic (Non-Color) -> Principled "Roughness", "Metallic"
         normal (Non-Color, OpenGL = Blender's convention) -> Normal Map (tangent) -> "Normal"
         height (Non-Color) -> Displacement (scale BUMP_SCALE) -> Material Output "Displacement"
     Principled BSDF -> Material Output
+
+The zoom is the fit's (params.json's "calibration.zoom": texture periods across the photo), so a
+UV square shows the material at the photo's scale with the maps one seamless period; ``tiling``
+is the user's repeat on top of it.
 
 A flat map becomes the socket's default value instead of a texture (a flat normal or height map
 adds nothing). Height drives the Displacement output with ``displacement_method`` 'BUMP': bump
@@ -33,7 +37,7 @@ import numpy as np
 
 from ..colour import SRGB_GAMMA, SRGB_KNEE, SRGB_OFFSET, SRGB_SCALE, SRGB_SLOPE
 from ..errors import ResultFolderError
-from ..vocabulary import OUTPUTS, PARAMS_FILE, REPORT_FILE
+from ..vocabulary import CALIBRATION, OUTPUTS, PARAMS_FILE, REPORT_FILE, ZOOM
 
 PROPERTY = "blender_match"
 BUMP_SCALE = 0.02  # metres of relief for the full 0..1 height range: a subtle bump, not a cliff
@@ -98,8 +102,9 @@ def build_material(result_dir, name=None, pack=False, tiling=1.0):
     """A new material built from the result folder (see the module docstring); returns it.
 
     ``name`` defaults to "Match <graph>" (Blender suffixes duplicates); images are named
-    "<name> <usage>". ``pack`` packs the images into the .blend. ``tiling`` repeats the texture
-    that many times per UV unit. Everything is checked before any datablock is created.
+    "<name> <usage>". ``pack`` packs the images into the .blend. ``tiling`` repeats the photo's
+    framing (the fit's zoom) that many times per UV unit. Everything is checked before any
+    datablock is created.
     """
     import bpy  # here, not at the top: read_report and srgb_to_linear serve without Blender
 
@@ -125,13 +130,19 @@ def build_material(result_dir, name=None, pack=False, tiling=1.0):
     tree.links.new(shader.outputs["BSDF"], output.inputs["Surface"])
     _set_flat_values(shader, flat)
     if files:
-        vector = _mapping(tree, tiling, y=_ROW * (len(files) - 1) / 2)
+        vector = _mapping(tree, tiling * fitted_zoom(json.loads(params)), y=_ROW * (len(files) - 1) / 2)
         for row, (usage, path) in enumerate(files.items()):
             image = _load_image(bpy, path, f"{base_name} {usage}", IMAGE_MAPS[usage][1], pack)
             color = _image_node(tree, usage, image, vector, y=_ROW * row)
             _wire(tree, usage, color, shader, output, y=_ROW * row)
     material[PROPERTY] = _record(report, params, result_dir)
     return material
+
+
+def fitted_zoom(params: dict) -> float:
+    """The fit's zoom in a parsed params.json (1 when absent, as in results written before it)."""
+    value = params.get("params", {}).get(f"{CALIBRATION}.{ZOOM}", 1.0) if isinstance(params, dict) else 1.0
+    return float(value) if isinstance(value, (int, float)) and value > 0 else 1.0
 
 
 def assign_material(obj, material) -> bool:
@@ -174,11 +185,11 @@ def _node(tree, kind: str, label: str, x: float, y: float):
     return node
 
 
-def _mapping(tree, tiling: float, y: float):
-    """UV coordinates scaled by ``tiling``: the Vector every image node reads."""
+def _mapping(tree, scale: float, y: float):
+    """UV coordinates scaled by ``scale``: the Vector every image node reads."""
     coords = _node(tree, "ShaderNodeTexCoord", "Texture Coordinate", _X["coords"], y)
     mapping = _node(tree, "ShaderNodeMapping", "Tiling", _X["mapping"], y)
-    mapping.inputs["Scale"].default_value = (tiling, tiling, 1.0)
+    mapping.inputs["Scale"].default_value = (scale, scale, 1.0)
     tree.links.new(coords.outputs["UV"], mapping.inputs["Vector"])
     return mapping.outputs["Vector"]
 

@@ -73,6 +73,9 @@ class BLENDER_MATCH_PG_settings(bpy.types.PropertyGroup):
     calibrate: BoolProperty(name="Match Photo Colour", default=True,
                             description="Scale the fitted base colour to the photo's exposure and white balance "
                                         "(off: the graph's own colours)")
+    match_scale: BoolProperty(name="Match Photo Scale", default=False,
+                              description="Search the texture's scale in the photo, carried by the material's "
+                                          "Mapping node (off: the graph's own scale)")
     tiling: FloatProperty(name="Tiling", default=1.0, min=0.001, soft_min=0.1, soft_max=16.0,
                           description="Repeats of the texture per UV unit")
     rerender_size: EnumProperty(name="Re-render Size", items=addon.SIZE_ITEMS, default="4K")

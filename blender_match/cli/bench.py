@@ -7,6 +7,8 @@ from pathlib import Path
 
 import torch
 
+from .match import zoom_argument
+
 SUITES = ("nodes", "translator", "library", "match", "accuracy", "selection", "recovery", "photos")
 
 
@@ -27,6 +29,10 @@ def add_parser(sub):
                    help="iterations of each fit, rescaling the quality preset (photos, recovery, selection)")
     p.add_argument("--candidates", type=int,
                    help="graphs automatic matching fits per photo (photos; default: match's default)")
+    p.add_argument("--zoom", metavar="auto|Z",
+                   help="texture periods across the photo (photos, recovery; default 1; auto: searched)")
+    p.add_argument("--no-lighting", dest="lighting", action="store_false", default=None,
+                   help="fit under the ideal flash, not the photo's solved falloff (photos, recovery)")
     p.add_argument("--out", type=Path,
                    help="folder for results.json, results.md and charts (accuracy, recovery, photos)")
     p.add_argument("--json", action="store_true", help="print rows as JSON")
@@ -51,8 +57,10 @@ def run(args) -> int:
     module = importlib.import_module(f"blender_match.benchmarks.{args.what}")
     options = {"files": args.files, "graphs": args.graphs, "paper_iterations": args.paper_iterations,
                "quality": args.quality, "quick": args.quick or None, "out": args.out, "photos": args.photos,
-               "iterations": args.iterations, "candidates": args.candidates}
+               "iterations": args.iterations, "candidates": args.candidates, "lighting": args.lighting}
     extra = {k: v for k, v in options.items() if v is not None}
+    if args.zoom is not None:  # "auto" is None to the suite, so only a given --zoom is passed
+        extra["zoom"] = zoom_argument(args.zoom)
     rows = module.run(device=args.device, **extra)
     if args.json:
         print(json.dumps(rows, indent=1))

@@ -3,6 +3,7 @@ write its tiling maps, parameters, a comparison image and ``report.json`` (``pip
 """
 from __future__ import annotations
 
+import argparse
 import json
 from pathlib import Path
 
@@ -28,9 +29,25 @@ def add_parser(sub):
     p.add_argument("--no-calibration", dest="calibrate", action="store_false",
                    help="keep the fitted base colour as the graph gives it (default: scale it to the photo's "
                         "exposure and white balance)")
+    p.add_argument("--zoom", type=zoom_argument, default=1.0, metavar="auto|Z",
+                   help="texture periods across the photo (default 1: the graph's own scale; auto: searched "
+                        "over 1, 2 and 4); the Blender material carries it as its Mapping scale")
+    p.add_argument("--no-lighting", dest="lighting", action="store_false",
+                   help="fit under the ideal flash (default: under the photo's flash falloff and vignetting, "
+                        "solved from the photo; the maps never carry it)")
     p.add_argument("--overwrite", action="store_true", help="replace files already in --out")
     p.add_argument("--json", action="store_true", help="print the report as JSON instead of a summary")
     p.set_defaults(run=run)
+
+
+def zoom_argument(text: str) -> float | None:
+    """``--zoom``: "auto" (None: searched) or a number (checked against the range by the pipeline)."""
+    if text == "auto":
+        return None
+    try:
+        return float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected auto or a number, not {text!r}") from None
 
 
 class _MatchProgress:
@@ -57,7 +74,8 @@ class _MatchProgress:
 def run(args) -> int:
     options = MatchOptions(graph=args.graph, size=args.size, quality=args.quality, seed=args.seed,
                            device=args.device, overwrite=args.overwrite, iterations=args.iterations,
-                           candidates=args.candidates, calibrate=args.calibrate)
+                           candidates=args.candidates, calibrate=args.calibrate, zoom=args.zoom,
+                           lighting=args.lighting)
     display = _MatchProgress()
     try:
         report = match_photo(args.photo, args.out, options, progress=display)
@@ -68,6 +86,9 @@ def run(args) -> int:
         return 0
     print(f"graph {report['graph']}: loss {report['loss_initial']:.5f} -> {report['loss_final']:.5f} "
           f"in {report['iterations']} iterations, {report['seconds']:.1f} s on {report['device']}")
+    zoom = report.get("calibration", {}).get("zoom", 1.0)
+    if zoom != 1:
+        print(f"zoom             {zoom:g} texture periods across the photo (the material's Mapping scale)")
     for usage, info in report["maps"].items():
         flat = f" (flat: {info['flat']})" if info["flat"] else ""
         print(f"{usage:<17} {args.out / info['file']}{flat}")

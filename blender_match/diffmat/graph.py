@@ -25,8 +25,8 @@ from dataclasses import dataclass
 import torch
 from torch import nn
 
-from ..vocabulary import USAGES
-from .calibration import CALIBRATION, BaseColourGain
+from ..vocabulary import CALIBRATION, USAGES
+from .calibration import PhotoCalibration
 from .errors import DiffMatError
 from .nodes.module import EvalContext, Node, ParameterSet
 from .toposort import topological_order
@@ -79,7 +79,7 @@ class MaterialGraph(nn.Module):
         self.outputs: dict[str, Ref] = {}
         self._cache: dict[tuple, tuple[torch.Tensor, ...]] = {}
         self._plan: EvalPlan | None = None
-        self.calibration = BaseColourGain()
+        self.calibration = PhotoCalibration()
 
     # ---- building -------------------------------------------------------------------------
     def add(self, name: str, node: Node | str, inputs: dict | None = None, *, seed: int = 0,
@@ -346,7 +346,7 @@ class MaterialGraph(nn.Module):
                 del values[src]
         out = {u: values[n][i] for u, n, i in plan.outputs}
         if "basecolor" in out:
-            out["basecolor"] = self.calibration.scale(out["basecolor"])
+            out["basecolor"] = self.calibration.apply_gain(out["basecolor"])
         return out
 
     def clear_cache(self):

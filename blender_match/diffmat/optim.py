@@ -35,6 +35,7 @@ import torch.nn.functional as F
 
 from ..errors import Cancelled
 from ..vocabulary import QUALITY_NAMES
+from .calibration import framed_maps
 from .descriptor import TextureDescriptor, style_loss
 from .errors import DiffMatError
 from .render import FlashCamera, render_maps
@@ -134,12 +135,13 @@ class TargetLoss:
 
     def __call__(self, graph, theta: torch.Tensor, size: int, scales: tuple[int, ...], seed: int = 0):
         """Loss of each parameter vector in ``theta`` (B, P) rendered at ``size`` (at most the photo's
-        own size; ``scales`` are capped the same way): a (B,) tensor."""
+        own size; ``scales`` are capped the same way) and framed at the graph's zoom
+        (``calibration.framed_maps``): a (B,) tensor."""
         side = self.photo.shape[-1]
         if size > side:
             size = side
             scales = tuple(dict.fromkeys(min(s, side) for s in scales))
-        maps = graph(size=size, seed=seed, theta=theta)
+        maps = framed_maps(graph, size, seed, theta)
         image = render_maps(maps, self.camera)
         if image.shape[0] != theta.shape[0]:
             image = image.expand(theta.shape[0], -1, -1, -1)

@@ -32,16 +32,33 @@ class FlashCamera:
     ``fov`` is the camera's full field of view in degrees (the sample fills the frame),
     ``distance`` is in sample widths, ``power`` scales the flash so that a white Lambertian sample
     at the centre renders at ``power`` in linear radiance (1 would just saturate).
+
+    ``falloff`` is what a real phone adds to that ideal flash: its beam pattern and its lens's
+    vignetting, as a smooth factor on the light over the frame, exp(a u + b v + c u² + d v² + e uv)
+    with (u, v) from -1 to 1 across the frame (u right, v up). All zero (the default): the ideal
+    flash. ``diffmat.calibration.solve_lighting`` finds it for a photo.
     """
 
     fov: float = 50.0
     distance: float | None = None
     power: float = 0.75
+    falloff: tuple[float, ...] = (0.0, 0.0, 0.0, 0.0, 0.0)
 
     def camera_distance(self) -> float:
         if self.distance is not None:
             return self.distance
         return 0.5 / math.tan(math.radians(self.fov) / 2)
+
+    def falloff_field(self, x: torch.Tensor, y: torch.Tensor) -> torch.Tensor | None:
+        """The ``falloff`` factor at the sample-plane positions ``x``, ``y`` of the frame's pixels
+        (sample widths from the centre, y up), scaled to a mean of one over them (it moves light
+        about the frame; the level is the gain's), or None when there is none."""
+        if not any(self.falloff):
+            return None
+        a, b, c, d, e = self.falloff
+        u, v = 2 * x, 2 * y
+        field = torch.exp(a * u + b * v + c * u * u + d * v * v + e * u * v)
+        return field / field.mean()
 
 
 def srgb_to_linear(x: torch.Tensor) -> torch.Tensor:
@@ -74,8 +91,8 @@ def render_flash(basecolor: torch.Tensor, normal: torch.Tensor | None = None,
 
     Missing maps default to a flat normal, roughness 0.5 and metallic 0. Differentiable in every map.
     ``light_offset`` (dx, dy), in sample widths (x right, y up), moves the light away from the
-    camera in the plane parallel to the sample (a "novel light" view, for evaluation); None keeps
-    the co-located flash.
+    camera in the plane parallel to the sample (a "novel light" view, for evaluation, which has no
+    ``camera.falloff``: that belongs to the phone's flash); None keeps the co-located flash.
     """
     n_img, _, h, w = basecolor.shape
     like = basecolor
@@ -102,6 +119,9 @@ def render_flash(basecolor: torch.Tensor, normal: torch.Tensor | None = None,
 
     cos = (nrm * wi).sum(dim=1, keepdim=True).clamp_min(EPS)  # n.l = n.v = n.h (co-located)
     irradiance = param4d(camera.power * math.pi * d * d, like) / dist2 * cos
+    field = camera.falloff_field(x, y)
+    if field is not None:
+        irradiance = irradiance * field
     return linear_to_srgb(_brdf(albedo, rough, metal, cos, cos, cos) * irradiance)
 
 

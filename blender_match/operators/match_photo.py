@@ -46,6 +46,9 @@ class BLENDER_MATCH_OT_match_photo(JobRunner, bpy.types.Operator):
     calibrate: BoolProperty(name="Match Photo Colour", default=True, options=_SKIP,
                             description="Scale the fitted base colour to the photo's exposure and white balance "
                                         "(off: the graph's own colours)")
+    match_scale: BoolProperty(name="Match Photo Scale", default=False, options=_SKIP,
+                              description="Search the texture's scale in the photo, carried by the material's "
+                                          "Mapping node (off: the graph's own scale)")
     tiling: FloatProperty(name="Tiling", default=1.0, min=0.001, options=_SKIP,
                           description="Repeats of the texture per UV unit")
     iterations: IntProperty(name="Iterations", default=0, min=0, options={'HIDDEN', 'SKIP_SAVE'},
@@ -88,9 +91,9 @@ class BLENDER_MATCH_OT_match_photo(JobRunner, bpy.types.Operator):
         return {"photo": settings.photo_path}
 
     def _fit_options(self, settings) -> dict:
-        """Graph, size, quality, device, colour calibration, packing and tiling: the operator's when
+        """Graph, size, quality, device, colour and scale matching, packing and tiling: the operator's when
         set, else the panel's (whose size is a "1K"/"2K"/"4K" choice)."""
-        names = ("graph", "size", "quality", "device", "calibrate", "pack", "tiling")
+        names = ("graph", "size", "quality", "device", "calibrate", "match_scale", "pack", "tiling")
         options = {name: getattr(self, name) for name in names}
         if settings is None:
             return options

@@ -17,15 +17,16 @@ from pathlib import Path
 import torch
 
 from ..diffmat import MaterialGraph
-from ..diffmat.calibration import GAIN, solve_gain
+from ..diffmat.calibration import solve_gain, solve_lighting
 from ..diffmat.descriptor import TextureDescriptor
 from ..diffmat.optim import FitResult, Schedule, TargetLoss, fit
+from ..diffmat.render import FlashCamera
 from ..photo import load_photo
-from ..selection import budget_factor, check_photo, choose_start, rank_graphs, select_and_fit, shared_vgg
-from ..vocabulary import FITTING, READING_PHOTO, SELECTING, WRITING_MAPS
+from ..selection import budget_factor, check_photo, choose_start, frame_start, rank_graphs, select_and_fit, shared_vgg
+from ..vocabulary import FALLOFF, FITTING, GAIN, READING_PHOTO, SELECTING, WRITING_MAPS, ZOOM
 from .device import resolve_device
 from .graphs import load_graph
-from .options import PHOTO_SIZE, MatchOptions, check_candidates, check_size, match_schedule
+from .options import PHOTO_SIZE, MatchOptions, check_candidates, check_size, check_zoom, match_schedule
 from .progress import AUTO_SHARES, NAMED_SHARES, JobProgress
 from .result_folder import MATCH_FILES, MatchFailed, check_targets, write_result
 
@@ -38,13 +39,15 @@ OutputsCheck = Callable[[list[str], tuple[str, ...]], None]
 class Match:
     """A fitted material: ``graph`` with its fitted parameters set (on ``device``), ``source`` the
     name ``load_graph`` loads it by, ``photo`` the (1, 3, S, S) sRGB photo it was fitted to (on
-    ``device``), ``report`` the fit's part of report.json."""
+    ``device``), ``report`` the fit's part of report.json, ``camera`` the photo's flash as the fit
+    found it (its falloff: a property of the photo, not of the material, so no map carries it)."""
 
     graph: MaterialGraph
     source: str
     photo: torch.Tensor
     device: torch.device
     report: dict = field(default_factory=dict)
+    camera: FlashCamera = FlashCamera()
 
 
 def fit_report(graph: MaterialGraph, result: FitResult, schedule: Schedule, photo, quality: str,
@@ -66,18 +69,22 @@ def photo_loss(target: torch.Tensor, device) -> TargetLoss:
 
 
 def fit_named_graph(graph: MaterialGraph, name: str | None, target: torch.Tensor, schedule: Schedule, seed: int,
-                    device, progress=None, cancel=None) -> tuple[FitResult, str, torch.Tensor]:
+                    device, zoom: float | None = 1.0, lighting: bool = True, progress=None,
+                    cancel=None) -> tuple[FitResult, str, torch.Tensor, FlashCamera]:
     """Fit ``graph`` (the graph called ``name``) to the photo tensor ``target`` from the start the
-    product chooses (default, bank or predicted parameters: ``choose_start``): (FitResult, the
-    start's name, the start's parameter vector). The graph is moved to ``device``; its parameters
-    are left unchanged."""
+    product chooses (default, bank or predicted parameters: ``choose_start``), framed at ``zoom``
+    (None: searched from that start) and, when ``lighting``, under the photo's flash falloff
+    solved at that start (``selection.frame_start``): (FitResult, the start's name, the start's
+    parameter vector, the camera of the fit). The graph is moved to ``device``; its parameters
+    are left unchanged, its zoom is set."""
     graph.to(device)
     loss = photo_loss(target, device)  # choose_start shares it
     theta0, start = choose_start(graph, name, loss, schedule, seed)
     if theta0 is None:
         theta0 = graph.get_vector()
+    loss.camera = frame_start(graph, loss, theta0, schedule, seed, zoom, lighting)
     result = fit(graph, loss, schedule, seed=seed, theta0=theta0, progress=progress, cancel=cancel)
-    return result, start, theta0.detach().cpu()
+    return result, start, theta0.detach().cpu(), loss.camera
 
 
 def _fitting_progress(job: JobProgress, event: dict) -> None:
@@ -89,7 +96,7 @@ def _fitting_progress(job: JobProgress, event: dict) -> None:
 
 
 def _fit_named(job: JobProgress, target: torch.Tensor, options: MatchOptions, schedule: Schedule, photo_name: str,
-               check_outputs: OutputsCheck | None) -> tuple[MaterialGraph, str, dict]:
+               check_outputs: OutputsCheck | None) -> tuple[MaterialGraph, str, dict, FlashCamera]:
     assert options.graph is not None
     graph = load_graph(options.graph)
     if check_outputs is not None:
@@ -101,16 +108,17 @@ def _fit_named(job: JobProgress, target: torch.Tensor, options: MatchOptions, sc
         _fitting_progress(job, {**event, "graph": graph.name, "graph_index": 1, "graph_count": 1,
                                "iterations": schedule.iterations})
 
-    result, start, _ = fit_named_graph(graph, options.graph, target, schedule, options.seed, target.device,
-                                       progress=on_step, cancel=job.cancel)
+    result, start, _, camera = fit_named_graph(graph, options.graph, target, schedule, options.seed, target.device,
+                                               zoom=options.zoom, lighting=options.lighting, progress=on_step,
+                                               cancel=job.cancel)
     report = fit_report(graph, result, schedule, photo_name, options.quality, start)
     graph.set_vector(result.theta)
     graph.clear_cache()
-    return graph, options.graph, report
+    return graph, options.graph, report, camera
 
 
 def _fit_auto(job: JobProgress, target: torch.Tensor, options: MatchOptions, schedule: Schedule, photo_name: str,
-              check_outputs: OutputsCheck | None) -> tuple[MaterialGraph, str, dict]:
+              check_outputs: OutputsCheck | None) -> tuple[MaterialGraph, str, dict, FlashCamera]:
     if check_outputs is not None:  # before a graph is chosen, only the files every match writes
         check_outputs([], MATCH_FILES)
     torch.manual_seed(options.seed)
@@ -126,8 +134,8 @@ def _fit_auto(job: JobProgress, target: torch.Tensor, options: MatchOptions, sch
     job.stage(FITTING, graph=ranking[0]["graph"], graph_index=1, graph_count=min(k, len(ranking)))
     loss = photo_loss(target, target.device)
     best, fits = select_and_fit(loss, ranking, k, schedule, seed=options.seed, materials=materials,
-                                progress=lambda event: _fitting_progress(job, event),
-                                cancel=job.cancel)
+                                zoom=options.zoom, lighting=options.lighting,
+                                progress=lambda event: _fitting_progress(job, event), cancel=job.cancel)
     graph = best.material
     report = fit_report(graph, best.fitted, schedule, photo_name, options.quality, best.start)
     if check_outputs is not None:
@@ -137,15 +145,16 @@ def _fit_auto(job: JobProgress, target: torch.Tensor, options: MatchOptions, sch
     report["ranking"] = [{"graph": e["graph"], "distance": round(e["distance"], 6), "start": e["start"]}
                          for e in ranking]
     report["fitted"] = [f.summary() for f in fits]
-    return graph, best.graph, report
+    return graph, best.graph, report, loss.camera
 
 
 def _fit(job: JobProgress, photo, options: MatchOptions, schedule: Schedule, device: torch.device,
          check_outputs: OutputsCheck | None) -> Match:
-    """Read the photo and fit (named or automatic), then calibrate the fitted graph's base colour
-    to the photo's exposure and white balance (``diffmat.calibration``) unless
-    ``options.calibrate`` is off: what ``fit_photo`` and ``match_photo`` share. The photo is moved
-    to the device once, here."""
+    """Read the photo and fit (named or automatic; either frames the graph at the photo's scale
+    and light), then solve the photo's flash falloff again for the fitted material (unless
+    ``options.lighting`` is off) and calibrate its base colour to the photo's exposure and white
+    balance under it (unless ``options.calibrate`` is off): what ``fit_photo`` and
+    ``match_photo`` share. The photo is moved to the device once, here."""
     job.stage(READING_PHOTO)
     if isinstance(photo, torch.Tensor):
         target, photo_name = check_photo(photo), "photo"
@@ -153,11 +162,15 @@ def _fit(job: JobProgress, photo, options: MatchOptions, schedule: Schedule, dev
         target, photo_name = load_photo(Path(photo), PHOTO_SIZE), str(photo)
     target = target.to(device)
     branch = _fit_named if options.graph else _fit_auto
-    graph, source, report = branch(job, target, options, schedule, photo_name, check_outputs)
+    graph, source, report, camera = branch(job, target, options, schedule, photo_name, check_outputs)
+    report["calibration"] = {ZOOM: graph.calibration.periods()}
+    if options.lighting:
+        camera = solve_lighting(graph, target, options.seed, camera)
+        report["calibration"][FALLOFF] = [round(v, 4) for v in camera.falloff]
     if options.calibrate and "basecolor" in graph.outputs:
-        gain = solve_gain(graph, target, seed=options.seed)
-        report["calibration"] = {GAIN: [round(float(v), 4) for v in gain]}
-    return Match(graph, source, target, device, report)
+        gain = solve_gain(graph, target, seed=options.seed, camera=camera)
+        report["calibration"][GAIN] = [round(float(v), 4) for v in gain]
+    return Match(graph, source, target, device, report, camera)
 
 
 def fit_photo(photo, options: MatchOptions, progress: Progress | None = None,
@@ -167,6 +180,7 @@ def fit_photo(photo, options: MatchOptions, progress: Progress | None = None,
     ``options.size`` and ``options.overwrite`` play no part."""
     schedule = match_schedule(options.quality, options.iterations)
     check_candidates(options.candidates)
+    check_zoom(options.zoom)
     device = resolve_device(options.device)
     job = JobProgress(progress, cancel, NAMED_SHARES if options.graph else AUTO_SHARES)
     match = _fit(job, photo, options, schedule, device, None)
@@ -182,6 +196,7 @@ def match_photo(photo, out_dir, options: MatchOptions, progress: Progress | None
     before any work unless ``options.overwrite``."""
     schedule = match_schedule(options.quality, options.iterations)
     check_candidates(options.candidates)
+    check_zoom(options.zoom)
     size = check_size(options.size)
     device = resolve_device(options.device)
     job = JobProgress(progress, cancel, NAMED_SHARES if options.graph else AUTO_SHARES)
@@ -192,4 +207,4 @@ def match_photo(photo, out_dir, options: MatchOptions, progress: Progress | None
     match = _fit(job, photo, options, schedule, device, check_outputs)
     job.stage(WRITING_MAPS)
     return write_result(match.graph, match.source, out_dir, size, options.seed, device, options.overwrite, job,
-                        photo=match.photo, report_extra=match.report)
+                        photo=match.photo, camera=match.camera, report_extra=match.report)

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from ..diffmat.calibration import ZOOM_RANGE
 from ..diffmat.optim import Schedule, quality_schedule
 from ..errors import OptionError
 from ..vocabulary import DEFAULT_DEVICE, DEFAULT_QUALITY, QUALITY_NAMES
@@ -22,7 +23,12 @@ class MatchOptions:
     ``.sbs`` path (None: automatic selection). ``iterations`` overrides the quality preset's
     iteration count (tests and scripted drafts). ``candidates``: how many of the best-ranked graphs
     automatic selection fits, keeping the best final loss (3: the paper's). ``calibrate``: solve the
-    photo's exposure and white balance as a gain on the fitted base colour (``diffmat.calibration``)."""
+    photo's exposure and white balance as a gain on the fitted base colour (``diffmat.calibration``).
+    ``zoom``: texture periods across the photo, fixed for the fit (1, the default: the graph's
+    authored scale); None searches it (``diffmat.zoom_search``; not the default: on the 33
+    development photos it helped as many fits as it hurt, docs/benchmarks.md). ``lighting``: fit
+    under the photo's flash falloff (its beam pattern and vignetting,
+    ``calibration.solve_lighting``) instead of the ideal flash."""
 
     graph: str | None = None
     size: int = 2048
@@ -33,6 +39,8 @@ class MatchOptions:
     iterations: int | None = None
     candidates: int = AUTO_CANDIDATES
     calibrate: bool = True
+    zoom: float | None = 1.0
+    lighting: bool = True
 
 
 def check_size(size) -> int:
@@ -48,6 +56,16 @@ def check_candidates(candidates) -> int:
     if isinstance(candidates, bool) or not isinstance(candidates, int) or candidates < 1:
         raise OptionError(f"candidates {candidates!r}: expected a positive integer")
     return candidates
+
+
+def check_zoom(zoom) -> float | None:
+    """``zoom`` when it is None (searched) or a number within the calibration's ``ZOOM_RANGE``, else OptionError."""
+    if zoom is None:
+        return None
+    if isinstance(zoom, bool) or not isinstance(zoom, (int, float)) or not ZOOM_RANGE[0] <= zoom <= ZOOM_RANGE[1]:
+        raise OptionError(f"zoom {zoom!r}: expected a number of texture periods across the photo between "
+                          f"{ZOOM_RANGE[0]:g} and {ZOOM_RANGE[1]:g}")
+    return float(zoom)
 
 
 def match_schedule(quality: str, iterations: int | None = None) -> Schedule:

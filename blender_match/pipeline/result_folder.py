@@ -15,9 +15,10 @@ from pathlib import Path
 import torch
 
 from ..diffmat import MaterialGraph
+from ..diffmat.calibration import framed_maps
 from ..diffmat.optim import resize_square
 from ..diffmat.params_file import graph_params
-from ..diffmat.render import render_maps
+from ..diffmat.render import FlashCamera, render_maps
 from ..errors import BlenderMatchError
 from ..image_files import write_png
 from ..material_maps import to_channels, write_maps
@@ -62,25 +63,31 @@ def evaluate_maps(graph: MaterialGraph, size: int, seed: int) -> dict[str, torch
     return maps
 
 
-def comparison_image(maps: dict[str, torch.Tensor], photo: torch.Tensor | None) -> torch.Tensor:
-    """One row of COMPARISON_TILE squares: the photo (when given), the render, then every map."""
+def comparison_image(graph: MaterialGraph, maps: dict[str, torch.Tensor], photo: torch.Tensor | None,
+                     seed: int, camera: FlashCamera = FlashCamera()) -> torch.Tensor:
+    """One row of COMPARISON_TILE squares: the photo (when given), the render, then every map.
+    Beside a photo the render is the graph as the fit saw it: at the photo's size and zoom
+    (``calibration.framed_maps``), under ``camera`` (the photo's flash); alone, it is one period
+    of ``maps`` under the ideal flash."""
     with torch.no_grad():
         tiles: list[torch.Tensor | None] = [] if photo is None else [photo]
-        tiles.append(render_maps(maps)[:1] if "basecolor" in maps else None)
+        shown = maps if photo is None else framed_maps(graph, photo.shape[-1], seed)
+        tiles.append(render_maps(shown, camera if photo is not None else FlashCamera())[:1]
+                     if "basecolor" in maps else None)
         tiles.extend(to_channels(maps[u][:1], 3) for u in AUTHORED_USAGES if u in maps)
         squares = [resize_square(t.float().cpu().clamp(0, 1), COMPARISON_TILE) for t in tiles if t is not None]
         return torch.cat(squares, dim=3)
 
 
 def write_result(graph: MaterialGraph, source: str, out_dir, size: int, seed: int, device, overwrite: bool,
-                 progress: JobProgress, photo: torch.Tensor | None = None,
+                 progress: JobProgress, photo: torch.Tensor | None = None, camera: FlashCamera = FlashCamera(),
                  report_extra: dict | None = None) -> dict:
     """Evaluate the graph at ``size`` and write maps, params.json, comparison.png and report.json;
     returns the report. ``source`` names the graph as ``pipeline.load_graph`` loads it again."""
     out_dir = Path(out_dir)
     maps = evaluate_maps(graph, size, seed)
     progress.check_cancel()
-    comparison = comparison_image(maps, photo)
+    comparison = comparison_image(graph, maps, photo, seed, camera)
     maps = {u: m.cpu() for u, m in maps.items()}
     progress.within(0.3)
     written = write_maps(maps, out_dir, overwrite=overwrite)

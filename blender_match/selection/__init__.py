@@ -4,9 +4,9 @@ from per-graph models (``predictor``, ``bank``, ``start``) and fits the best-ran
 under one shared budget (``fit``). The caller decides how many candidates (``k``) and with which
 optimiser ``Schedule``; nothing here knows quality names or result folders."""
 from .descriptor import shared_vgg
-from .fit import Fitted, budget_factor, select_and_fit
+from .fit import Fitted, budget_factor, frame_start, select_and_fit
 from .rank import NoSelectionModels, available_models, check_photo, rank_graphs
 from .start import choose_start
 
 __all__ = ["Fitted", "NoSelectionModels", "available_models", "budget_factor", "check_photo", "choose_start",
-           "rank_graphs", "select_and_fit", "shared_vgg"]
+           "frame_start", "rank_graphs", "select_and_fit", "shared_vgg"]

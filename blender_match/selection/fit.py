@@ -16,15 +16,27 @@ a graph ranked lower must fit clearly better to displace a better-ranked one. On
 fit's own loss favours the graphs that can absorb a photo's lighting and colour, whatever their
 material, where the ranking (every graph judged from one proposed start, at one size) more often
 names the photo's family (docs/benchmarks.md).
+
+Before its first round each candidate is framed at the photo's scale and light: its zoom is
+searched from its start (``diffmat.zoom_search``) unless the caller fixes it, then the falloff of
+the photo's flash over the frame is solved against the start's render
+(``calibration.solve_lighting``), so that the fit need not bend the material to imitate a
+phone's beam pattern and vignetting. Each candidate fits under its own camera.
 """
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
 
+import torch
+
 from ..diffmat import MaterialGraph
+from ..diffmat.calibration import solve_lighting
 from ..diffmat.optim import FitResult, Schedule, Stage, TargetLoss, fit
+from ..diffmat.render import FlashCamera
+from ..diffmat.zoom_search import search_zoom
 from ..errors import OptionError
+from ..vocabulary import ZOOM
 from .rank import load_material, order_by_simplicity
 
 PROBE_SHARE = 0.15
@@ -47,6 +59,7 @@ class Fitted:
     distance: float
     nodes: int
     params: int
+    camera: FlashCamera = FlashCamera()
     result: FitResult | None = None
     iterations: int = 0
     seconds: float = 0.0
@@ -65,7 +78,7 @@ class Fitted:
         its loss does not compare with the survivors'; ``rounds`` says which measure each used."""
         return {"graph": self.graph, "loss_final": round(self.fitted.loss_final, 6), "seconds": round(self.seconds, 3),
                 "iterations": self.iterations, "start": self.start, "survived_probe": self.survived_probe,
-                "rounds": self.rounds}
+                "zoom": self.material.calibration.periods(), "rounds": self.rounds}
 
 
 def probe_schedule(schedule: Schedule, iterations: int) -> Schedule:
@@ -75,12 +88,36 @@ def probe_schedule(schedule: Schedule, iterations: int) -> Schedule:
                                                      first.final_lr_ratio),), None, schedule.min_improvement)
 
 
+def frame_start(graph, loss: TargetLoss, theta: torch.Tensor, schedule: Schedule, seed: int = 0,
+                zoom: float | None = 1.0, lighting: bool = True) -> FlashCamera:
+    """Set ``graph``'s zoom (``zoom`` when given, else the one ``search_zoom`` finds for the start
+    ``theta`` at ``schedule``'s first stage) and return the camera to fit it under: ``loss``'s,
+    with the photo's falloff solved at the start when ``lighting``. The falloff is solved before
+    the search too, at the graph's current zoom, so that each zoom is judged under the photo's
+    light (under the ideal flash a coarse start zoomed out can look closer to a vignetted photo
+    than the right scale does). ``loss.camera`` and the graph's parameters are left as they were."""
+    ideal = loss.camera
+    if lighting:
+        loss.camera = solve_lighting(graph, loss.photo, seed, ideal, theta)
+    if zoom is not None:
+        graph.calibration.set_values(**{ZOOM: zoom})
+    else:
+        first = schedule.stages[0]
+        search_zoom(graph, loss, theta, first.size, first.scales, seed)
+    graph.clear_cache()
+    loss.camera = ideal
+    return solve_lighting(graph, loss.photo, seed, ideal, theta) if lighting else ideal
+
+
 def select_and_fit(loss: TargetLoss, ranking: list[dict], k: int, schedule: Schedule, *, seed: int = 0,
-                   materials: dict | None = None, progress=None, cancel=None) -> tuple[Fitted, list[Fitted]]:
+                   materials: dict | None = None, zoom: float | None = 1.0, lighting: bool = True,
+                   progress=None, cancel=None) -> tuple[Fitted, list[Fitted]]:
     """Fit the ``k`` best of ``ranking`` (``rank_graphs``' entries) to the photo of ``loss`` under
     one shared budget of ``schedule`` (see the module docstring) and return ``(best, fitted)``:
     ``Fitted`` records, ``best.material`` with its fitted parameters set. ``materials``: the
-    graphs ``rank_graphs`` loaded, by name (others are loaded). ``progress`` gets {"graph",
+    graphs ``rank_graphs`` loaded, by name (others are loaded). ``zoom``: every candidate's,
+    fixed (None: each searches its own); ``lighting``: solve each one's falloff (``frame_start``).
+    ``loss.camera`` is left at the kept candidate's camera. ``progress`` gets {"graph",
     "graph_index", "graph_count", "iteration", "iterations", "loss", "eta_seconds"};
     ``cancel()`` raises Cancelled."""
     if k < 1:
@@ -92,6 +129,8 @@ def select_and_fit(loss: TargetLoss, ranking: list[dict], k: int, schedule: Sche
     state = {"done": 0}
     fits = [Fitted(e["graph"], load_material(e["graph"], device, materials), e["start"], e["distance"], e["nodes"],
                    e["params"]) for e in chosen]
+    for f, e in zip(fits, chosen):
+        f.camera = frame_start(f.material, loss, e["theta"], schedule, seed, zoom, lighting)
 
     def run(f: Fitted, index: int, sched: Schedule, theta0) -> None:
         def on_step(event):
@@ -101,6 +140,7 @@ def select_and_fit(loss: TargetLoss, ranking: list[dict], k: int, schedule: Sche
                           "iteration": state["done"], "iterations": total, "loss": event["loss"],
                           "eta_seconds": event["eta_seconds"]})
 
+        loss.camera = f.camera
         result = fit(f.material, loss, sched, seed=seed, theta0=theta0, progress=on_step, cancel=cancel)
         f.result = result
         f.iterations += result.iterations
@@ -135,4 +175,5 @@ def select_and_fit(loss: TargetLoss, ranking: list[dict], k: int, schedule: Sche
     winner = fits[order_by_simplicity(finals, key="loss")[0]["index"]]
     winner.material.set_vector(winner.fitted.theta)
     winner.material.clear_cache()
+    loss.camera = winner.camera
     return winner, fits

@@ -31,6 +31,7 @@ def draw_match_settings(layout, settings):
     col.prop(settings, "size")
     col.prop(settings, "device")
     col.prop(settings, "calibrate")
+    col.prop(settings, "match_scale")
     row = col.row(align=True)
     row.prop(settings, "tiling")
     row.prop(settings, "pack", text="Pack", toggle=True)

@@ -7,7 +7,7 @@ import pytest
 import torch
 
 from blender_match.image_files import write_png
-from blender_match.vocabulary import MATERIAL_OUTPUTS, USAGES
+from blender_match.vocabulary import CALIBRATION, MATERIAL_OUTPUTS, USAGES, ZOOM
 
 bpy = pytest.importorskip("bpy")
 
@@ -29,7 +29,7 @@ def _empty_blender():
     yield
 
 
-def make_result(root, flat=None, ao=True, graph="marble"):
+def make_result(root, flat=None, ao=True, graph="marble", params=PARAMS):
     """A result folder as the pipeline writes it; ``flat`` maps usage -> constant value."""
     flat = flat or {}
     root.mkdir(parents=True, exist_ok=True)
@@ -43,7 +43,7 @@ def make_result(root, flat=None, ao=True, graph="marble"):
             img = torch.rand(1, channels, H, W)
         write_png(root / file, img, bits=bits)
         maps[usage] = {"file": file, "flat": [flat[usage]] * channels if usage in flat else None}
-    (root / "params.json").write_text(json.dumps(PARAMS))
+    (root / "params.json").write_text(json.dumps(params))
     report = {"graph": graph, "loss_final": 0.125, "seconds": 3.5, "size": W, "maps": maps}
     (root / "report.json").write_text(json.dumps(report))
     return root
@@ -104,6 +104,19 @@ def test_images_sizes_and_tiling(tmp_path):
         assert image.name == f"Match marble {usage}" and tuple(image.size) == (W, H)
         assert linked(tree, "Tiling", "Vector", name, "Vector")
     assert not any("ambientocclusion" in image.name for image in bpy.data.images)
+
+
+def test_the_mapping_carries_the_fitted_zoom_times_the_tiling(tmp_path):
+    """params.json's "calibration.zoom" (texture periods across the photo) scales the UVs with the
+    user's tiling; rebuilding from the material recovers the user's tiling alone, not the product."""
+    from blender_match.blender.match_job import material_tiling
+
+    params = {"graph": "marble", "params": {**PARAMS["params"], f"{CALIBRATION}.{ZOOM}": 2.0}}
+    material = build_material(make_result(tmp_path / "r", params=params), tiling=1.5)
+    assert tuple(material.node_tree.nodes["Tiling"].inputs["Scale"].default_value) == pytest.approx((3.0, 3.0, 1.0))
+    assert material_tiling(material) == pytest.approx(1.5)
+    plain = build_material(make_result(tmp_path / "p"), tiling=1.5)  # a result from before the zoom
+    assert material_tiling(plain) == pytest.approx(1.5)
 
 
 def test_flat_maps_become_default_values(tmp_path):

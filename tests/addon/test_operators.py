@@ -90,7 +90,8 @@ SESSION = textwrap.dedent(r"""
                 "record": {k: v for k, v in record.items() if k != "params"},
                 "params": json.loads(record["params"]),
                 "sliders": {item.name: (list(item.color) if item.kind == "COLOR" else item.value)
-                            for item in mat.blender_match_params}}
+                            for item in mat.blender_match_params},
+                "mapping_scale": list(tree.nodes["Tiling"].inputs["Scale"].default_value)}
 
     def run_op(op, **kwargs):
         try:
@@ -303,6 +304,10 @@ def test_match_builds_a_new_material_in_the_active_slot(session):
     # the photo's exposure and white balance, calibrated by default, stored for re-renders
     assert mat["params"]["params"]["calibration.basecolor_gain"] == pytest.approx(
         report["calibration"]["basecolor_gain"], abs=1e-4)
+    # the texture's scale in the photo, searched by default, carried by the Mapping node (tiling 1)
+    zoom = report["calibration"]["zoom"]
+    assert mat["params"]["params"]["calibration.zoom"] == zoom
+    assert mat["mapping_scale"] == pytest.approx([zoom, zoom, 1.0])
     last = session["last"]
     assert last["state"] == "finished" and last["material"] == mat["name"] and last["graph"] == "plaster"
     assert isinstance(last["loss"], float) and last["seconds"] > 0

@@ -311,7 +311,7 @@ def test_idle_panel_shows_the_settings_and_match(session):
     assert ["blender_match.match_photo", "Match", {}] in idle["operators"]
     assert "blender_match.cancel" not in _ops(idle) and not idle["progress"]
     props = {p[1] for p in idle["props"] if p[0] == "BLENDER_MATCH_PG_settings"}
-    assert {"photo_source", "photo_path", "graph", "quality", "size", "device", "calibrate", "pack",
+    assert {"photo_source", "photo_path", "graph", "quality", "size", "device", "calibrate", "match_scale", "pack",
             "tiling"} <= props
     assert ["BLENDER_MATCH_PG_settings", "graph", "template_icon_view", False] in idle["props"]
     # the active material is not a matched one: no result, re-render or export yet

@@ -75,8 +75,9 @@ def test_run_writes_results_and_survives_a_broken_photo(one_photo, tmp_path):
     assert [f["graph"] for f in row["fitted"]] == [row["graph"]]
     assert results["summary"]["family_match_share_listed"] == results["summary"]["family_match_share"]
     assert row["family_match"] == (row["graph"] == "plaster")
-    for key in ("seconds", "loss", "patch_distance", "colour_distance"):
+    for key in ("seconds", "loss", "patch_distance", "colour_distance", "patch_distance_ideal_flash"):
         assert math.isfinite(row[key]), key
+    assert set(row["calibration"]) == {"zoom", "falloff", "basecolor_gain"}
     assert results["config"]["quality"] == "draft" and results["summary"]["photos"] == 2
     assert "wall_01.png" in (out / "results.md").read_text()
     with Image.open(out / "sheet.png") as sheet:

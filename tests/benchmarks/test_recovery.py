@@ -39,7 +39,7 @@ def test_a_draft_fit_keeps_fine_speckles():
     apply_params(truth, sample_params(name, 300_101))
     photo, _ = make_truth(truth, truth.get_vector(), 256, recovery.TRUTH_SEED)
     graph = load_library_graph(name)
-    result, _, start = fit_named_graph(graph, name, photo, quality_schedule("draft"), 0, torch.device("cpu"))
+    result, _, start, _ = fit_named_graph(graph, name, photo, quality_schedule("draft"), 0, torch.device("cpu"))
 
     def distance(theta):
         with torch.no_grad():

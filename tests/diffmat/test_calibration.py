@@ -1,15 +1,18 @@
 """Photometric calibration: the base colour gain (identity by default, never optimised, carried by
 params.json) and its closed-form solve (a known exposure and white balance recovered, the clipped
-flash highlight left out)."""
+flash highlight left out); the photo's flash falloff solved the same way."""
 from __future__ import annotations
+
+from dataclasses import replace
 
 import pytest
 import torch
 
 from blender_match.diffmat import DiffMatError, MaterialGraph
-from blender_match.diffmat.calibration import CALIBRATION, CLIP_LEVEL, GAIN, solve_gain, unclipped_level
+from blender_match.diffmat.calibration import CLIP_LEVEL, solve_gain, solve_lighting, unclipped_level
 from blender_match.diffmat.params_file import graph_params, load_params, save_params
 from blender_match.diffmat.render import FlashCamera, linear_to_srgb, render_maps, srgb_to_linear
+from blender_match.vocabulary import CALIBRATION, GAIN
 
 KNOWN_GAIN = torch.tensor([1.6, 1.0, 0.45])
 
@@ -38,7 +41,7 @@ def target_with_gain(g: MaterialGraph, gain: torch.Tensor, camera: FlashCamera =
 def test_the_gain_is_the_identity_by_default_and_scales_linear_light():
     g = sample()
     plain = g(size=32, seed=1)["basecolor"]
-    assert g.calibration.scale(plain) is plain
+    assert g.calibration.apply_gain(plain) is plain
     g.calibration.set_values(**{GAIN: torch.tensor([2.0, 1.0, 0.5])})
     scaled = g(size=32, seed=1)["basecolor"]
     expected = linear_to_srgb(srgb_to_linear(plain[:, :3]) * torch.tensor([2.0, 1.0, 0.5]).view(1, 3, 1, 1))
@@ -82,6 +85,35 @@ def test_solve_ignores_the_clipped_flash_highlight():
     assert float((target >= CLIP_LEVEL).any(dim=1).float().mean()) > 0.01
     gain = solve_gain(g, target, seed=3, camera=camera)
     assert torch.allclose(gain, KNOWN_GAIN, rtol=0.05), gain
+
+
+KNOWN_FALLOFF = (0.3, -0.2, -0.8, -0.6, 0.1)
+
+
+def test_solve_lighting_recovers_a_known_falloff_and_finds_little_where_there_is_none():
+    """The target is the graph under a phone-like falloff: solved from the ideal flash, the
+    falloff comes back to 0.01. With another noise seed the material's own coarse pattern differs
+    between target and render, and a target under the ideal flash solves to a falloff that stays
+    small: the terms follow the light more than the material."""
+    g = sample()
+    with torch.no_grad():
+        target = render_maps(g(size=128, seed=3), FlashCamera(falloff=KNOWN_FALLOFF))[:1]
+        plain = render_maps(g(size=128, seed=3))[:1]
+    camera = solve_lighting(g, target, seed=3)
+    assert camera.falloff == pytest.approx(KNOWN_FALLOFF, abs=0.01)
+    assert camera.power == FlashCamera().power
+    assert max(abs(v) for v in solve_lighting(g, plain, seed=0).falloff) < 0.2
+
+
+def test_solve_lighting_leaves_out_clipped_cells():
+    """A glossy sample under a flash so strong that its centre clips: the falloff of the light
+    around it is still found, and the clipped centre does not flatten it."""
+    g = sample(roughness=0.1)
+    camera = FlashCamera(power=2.0)
+    with torch.no_grad():
+        target = render_maps(g(size=128, seed=3), replace(camera, falloff=KNOWN_FALLOFF))[:1]
+    assert float((target >= CLIP_LEVEL).any(dim=1).float().mean()) > 0.01
+    assert solve_lighting(g, target, seed=3, camera=camera).falloff == pytest.approx(KNOWN_FALLOFF, abs=0.02)
 
 
 def test_unclipped_level_leaves_out_clipped_pixels():

@@ -34,6 +34,21 @@ def test_falloff_towards_the_corners_and_symmetry():
     torch.testing.assert_close(img, img.flip(-2))
 
 
+def test_the_falloff_moves_light_about_the_frame_and_keeps_its_mean():
+    """A phone's beam pattern and vignetting: zero terms are the ideal flash; a positive u term
+    brightens the right of the frame, a negative u² and v² term darkens the edges; the factor's
+    mean over the frame is one, so the level stays the gain's."""
+    base = dict(basecolor=flat(0.3, 3, 32), roughness=flat(1.0, 1, 32))
+    ideal = render_flash(**base)
+    torch.testing.assert_close(render_flash(**base, camera=FlashCamera(falloff=(0.0,) * 5)), ideal)
+    right = srgb_to_linear(render_flash(**base, camera=FlashCamera(falloff=(0.8, 0, 0, 0, 0))))
+    assert right[..., 16:].mean() > 1.5 * right[..., :16].mean()
+    edges = srgb_to_linear(render_flash(**base, camera=FlashCamera(falloff=(0, 0, -1.0, -1.0, 0))))
+    plain = srgb_to_linear(ideal)
+    assert edges[0, 0, 0, 0] < 0.5 * plain[0, 0, 0, 0] and edges[0, 0, 16, 16] > plain[0, 0, 16, 16]
+    assert edges.mean() == pytest.approx(float(plain.mean()), rel=0.05)
+
+
 def test_highlight_grows_sharper_as_roughness_falls():
     smooth = render_flash(flat(0.2, 3), roughness=flat(0.15))
     rough = render_flash(flat(0.2, 3), roughness=flat(0.8))

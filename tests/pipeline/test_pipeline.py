@@ -11,8 +11,9 @@ import torch
 from PIL import Image
 
 from blender_match.cli import main
-from blender_match.diffmat.calibration import unclipped_level
-from blender_match.diffmat.render import linear_to_srgb, render_maps, srgb_to_linear
+from blender_match.diffmat.calibration import framed_maps, unclipped_level
+from blender_match.diffmat.render import FlashCamera, linear_to_srgb, render_maps, srgb_to_linear
+from blender_match.diffmat.zoom_search import ZOOMS
 from blender_match.errors import BlenderMatchError, Cancelled
 from blender_match.image_files import write_png
 from blender_match.photo import load_photo
@@ -84,12 +85,34 @@ def test_the_fitted_base_colour_takes_the_photos_exposure_and_white_balance(phot
     shifted = linear_to_srgb(srgb_to_linear(image) * exposure * torch.tensor([1.0, 0.85, 0.7]).view(1, 3, 1, 1))
     match = fit_photo(shifted, MatchOptions(**TINY))
     with torch.no_grad():
-        rendered = render_maps(match.graph(size=128, seed=0))[:1]
+        rendered = render_maps(framed_maps(match.graph, 128, seed=0), match.camera)[:1]
     assert torch.allclose(unclipped_level(rendered), unclipped_level(shifted), rtol=0.03)
     assert match.report["calibration"]["basecolor_gain"] == pytest.approx(match.graph.calibration.gain().tolist(),
                                                                           abs=1e-4)
     plain = fit_photo(shifted, MatchOptions(**TINY, calibrate=False))
-    assert "calibration" not in plain.report and torch.equal(plain.graph.calibration.gain(), torch.ones(3))
+    assert "basecolor_gain" not in plain.report["calibration"]
+    assert torch.equal(plain.graph.calibration.gain(), torch.ones(3))
+    ideal = fit_photo(shifted, MatchOptions(**TINY, lighting=False))
+    assert "falloff" not in ideal.report["calibration"] and ideal.camera == FlashCamera()
+
+
+def test_a_fixed_zoom_is_reported_carried_and_checked(photo, tmp_path):
+    """``zoom`` fixes the texture periods across the photo: report.json and params.json carry it, the
+    maps stay one period at the asked size, and a re-render keeps it; a zoom out of range is refused."""
+    report = match_photo(photo, tmp_path / "z", MatchOptions(**TINY, zoom=2.0))
+    assert report["calibration"]["zoom"] == 2.0
+    params = json.loads((tmp_path / "z" / "params.json").read_text())
+    assert params["params"]["calibration.zoom"] == 2.0
+    assert png_size(tmp_path / "z" / "basecolor.png")[:2] == (64, 64)
+    render_params(tmp_path / "z" / "params.json", tmp_path / "again", 64)
+    assert json.loads((tmp_path / "again" / "params.json").read_text())["params"]["calibration.zoom"] == 2.0
+    assert len(report["calibration"]["falloff"]) == 5  # the photo's flash, solved: in the report only
+    assert not any(key.endswith("falloff") for key in params["params"])
+    assert fit_photo(photo, MatchOptions(**TINY)).report["calibration"]["zoom"] == 1.0  # the default
+    assert fit_photo(photo, MatchOptions(**TINY, zoom=None)).report["calibration"]["zoom"] in ZOOMS  # searched
+    with pytest.raises(BlenderMatchError, match="zoom 16"):
+        match_photo(photo, tmp_path / "bad", MatchOptions(**TINY, zoom=16))
+    assert not (tmp_path / "bad").exists()
 
 
 def test_fit_photo_returns_the_match_without_writing(photo, tmp_path, monkeypatch):
