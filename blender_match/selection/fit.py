@@ -97,15 +97,15 @@ def frame_start(graph, loss: TargetLoss, theta: torch.Tensor, schedule: Schedule
     light (under the ideal flash a coarse start zoomed out can look closer to a vignetted photo
     than the right scale does). ``loss.camera`` and the graph's parameters are left as they were."""
     ideal = loss.camera
-    if lighting:
-        loss.camera = solve_lighting(graph, loss.photo, seed, ideal, theta)
     if zoom is not None:
         graph.calibration.set_values(**{ZOOM: zoom})
     else:
+        if lighting:
+            loss.camera = solve_lighting(graph, loss.photo, seed, ideal, theta)
         first = schedule.stages[0]
         search_zoom(graph, loss, theta, first.size, first.scales, seed)
+        loss.camera = ideal
     graph.clear_cache()
-    loss.camera = ideal
     return solve_lighting(graph, loss.photo, seed, ideal, theta) if lighting else ideal
 
 
