@@ -190,10 +190,13 @@ def markdown(rows: list[dict], summary: dict, config: dict) -> str:
         "# bench photos",
         f"{config['photos_dir']}: quality {config['quality']}"
         + (f", {config['iterations']} iterations" if config["iterations"] else "")
-        + f", top {config['k']} fitted, seed {SEED}, photo size {config['photo_size']} px, "
+        + f", top {config['k']} fitted, zoom {config['zoom']}, "
+        + ("the photo's flash solved" if config["lighting"] else "the ideal flash")
+        + f", seed {SEED}, photo size {config['photo_size']} px, "
         f"device {config['device']}, "
         f"torch threads {config['threads']}. family match: the kept graph is in the category's family "
-        "(photo_categories.json); distances: photo against the kept material's flash render (lower is closer); "
+        "(photo_categories.json); distances: photo against the kept material's render under the photo's solved "
+        "flash (patch_distance_ideal_flash: under the ideal flash; lower is closer); "
         "seconds: selection and fitting; medians over the photos that did not fail",
         table([summary], list(summary)), "## Per photo", table(rows, COLUMNS)]) + "\n"
 
