@@ -112,7 +112,7 @@ def build_material(result_dir, name=None, pack=False, tiling=1.0):
         raise ValueError(f"tiling must be positive, not {tiling}")
     result_dir = Path(result_dir).resolve()
     report = read_report(result_dir)
-    params = _read_params(result_dir)
+    params, params_data = _read_params(result_dir)
     maps = report["maps"]
     flat = {u: maps[u]["flat"] for u in IMAGE_MAPS
             if isinstance(maps.get(u), dict) and maps[u].get("flat") is not None}
@@ -130,7 +130,7 @@ def build_material(result_dir, name=None, pack=False, tiling=1.0):
     tree.links.new(shader.outputs["BSDF"], output.inputs["Surface"])
     _set_flat_values(shader, flat)
     if files:
-        vector = _mapping(tree, tiling * fitted_zoom(json.loads(params)), y=_ROW * (len(files) - 1) / 2)
+        vector = _mapping(tree, tiling * fitted_zoom(params_data), y=_ROW * (len(files) - 1) / 2)
         for row, (usage, path) in enumerate(files.items()):
             image = _load_image(bpy, path, f"{base_name} {usage}", IMAGE_MAPS[usage][1], pack)
             color = _image_node(tree, usage, image, vector, y=_ROW * row)
@@ -158,17 +158,17 @@ def assign_material(obj, material) -> bool:
     return True
 
 
-def _read_params(result_dir: Path) -> str:
-    """params.json's text (checked to be JSON): the fitted parameters that re-rendering needs."""
+def _read_params(result_dir: Path) -> tuple[str, dict]:
+    """params.json's text, the fitted parameters that re-rendering needs, and its parsed content."""
     path = result_dir / PARAMS_FILE
     try:
         text = path.read_text(encoding="utf-8")
-        json.loads(text)
+        data = json.loads(text)
     except FileNotFoundError:
         raise ResultFolderError(f"{path}: missing (the fitted parameters)") from None
     except (OSError, UnicodeDecodeError, json.JSONDecodeError) as exc:
         raise ResultFolderError(f"{path}: unreadable ({exc})") from None
-    return text
+    return text, data
 
 
 def _record(report: dict, params: str, result_dir: Path) -> dict:

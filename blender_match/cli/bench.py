@@ -1,6 +1,7 @@
 """``blender-match bench [WHAT]``: run benchmarks and print their figures as a table."""
 from __future__ import annotations
 
+import argparse
 import importlib
 import json
 from pathlib import Path
@@ -29,7 +30,7 @@ def add_parser(sub):
                    help="iterations of each fit, rescaling the quality preset (photos, recovery, selection)")
     p.add_argument("--candidates", type=int,
                    help="graphs automatic matching fits per photo (photos; default: match's default)")
-    p.add_argument("--zoom", metavar="auto|Z",
+    p.add_argument("--zoom", type=zoom_argument, default=argparse.SUPPRESS, metavar="auto|Z",
                    help="texture periods across the photo (photos, recovery; default 1; auto: searched)")
     p.add_argument("--no-lighting", dest="lighting", action="store_false", default=None,
                    help="fit under the ideal flash, not the photo's solved falloff (photos, recovery)")
@@ -59,8 +60,8 @@ def run(args) -> int:
                "quality": args.quality, "quick": args.quick or None, "out": args.out, "photos": args.photos,
                "iterations": args.iterations, "candidates": args.candidates, "lighting": args.lighting}
     extra = {k: v for k, v in options.items() if v is not None}
-    if args.zoom is not None:  # "auto" is None to the suite, so only a given --zoom is passed
-        extra["zoom"] = zoom_argument(args.zoom)
+    if hasattr(args, "zoom"):  # "auto" is None to the suite, so a --zoom not given is absent instead
+        extra["zoom"] = args.zoom
     rows = module.run(device=args.device, **extra)
     if args.json:
         print(json.dumps(rows, indent=1))

@@ -49,8 +49,8 @@ CLIP_LEVEL = 0.98  # an sRGB value at or above this, in any channel, counts as c
 MIN_UNCLIPPED = 0.05  # below this share of unclipped pixels, every pixel counts
 KEEP_DARKEST = 0.8  # the level is the mean of this darker share of the unclipped pixels
 SOLVE_STEPS = 4
-# From two texture periods across one period of the photo to four tiles across it: beyond, the
-# graph's own scale parameters are the better lever (and zooming in costs the square in pixels).
+# From half a texture period across the photo to four periods: beyond, the graph's own scale
+# parameters are the better lever (and zooming in costs the square in pixels).
 ZOOM_RANGE = (0.5, 4.0)
 MIN_TILE = 16  # the smallest tile a zoomed-out graph is evaluated at, in pixels
 LIGHTING_CELLS = 16  # the falloff is fitted to the frame's light in this many cells across

@@ -8,9 +8,9 @@ because the graph evaluates at power-of-two sizes) and keeps the zoom with the l
 loss. The search only zooms out: zooming in evaluates the graph at four times the pixels for
 every step of the fit (a balanced fit would pass its four minutes), and where a photo's features
 are larger than the graph's, its own scale parameters are the cheaper lever; ``--zoom 0.5``
-still asks for it. The authored scale (zoom 1) is kept unless another zoom lowers the loss by more than
-``KEEP_AUTHORED``: the loss of a start is a noisy judge, and a graph's defaults were chosen for a
-sample of about the size a phone photographs.
+still asks for it. The authored scale (zoom 1) is kept unless another zoom lowers the loss by
+more than ``KEEP_AUTHORED``: the loss of a start is a noisy judge, and a graph's defaults were
+chosen for a sample of about the size a phone photographs.
 
 The zoom is then fixed for the fit (``calibration.framed_maps``); in Blender it is the Mapping
 node's scale, so the written maps stay one seamless period.

@@ -68,12 +68,11 @@ def comparison_image(graph: MaterialGraph, maps: dict[str, torch.Tensor], photo:
     """One row of COMPARISON_TILE squares: the photo (when given), the render, then every map.
     Beside a photo the render is the graph as the fit saw it: at the photo's size and zoom
     (``calibration.framed_maps``), under ``camera`` (the photo's flash); alone, it is one period
-    of ``maps`` under the ideal flash."""
+    of ``maps`` (under the ideal flash, the only one a caller without a photo has)."""
     with torch.no_grad():
         tiles: list[torch.Tensor | None] = [] if photo is None else [photo]
         shown = maps if photo is None else framed_maps(graph, photo.shape[-1], seed)
-        tiles.append(render_maps(shown, camera if photo is not None else FlashCamera())[:1]
-                     if "basecolor" in maps else None)
+        tiles.append(render_maps(shown, camera)[:1] if "basecolor" in maps else None)
         tiles.extend(to_channels(maps[u][:1], 3) for u in AUTHORED_USAGES if u in maps)
         squares = [resize_square(t.float().cpu().clamp(0, 1), COMPARISON_TILE) for t in tiles if t is not None]
         return torch.cat(squares, dim=3)

@@ -89,3 +89,10 @@ def test_missing_folder_is_a_clear_message(tmp_path, capsys):
     err = capsys.readouterr().err
     assert "no photos" in err and "absent" in err and "Traceback" not in err
     assert not (tmp_path / "out").exists()
+
+
+def test_a_bad_zoom_is_a_clear_message(capsys):
+    with pytest.raises(SystemExit) as exit_info:
+        main(["bench", "photos", "--zoom", "x"])
+    err = capsys.readouterr().err
+    assert exit_info.value.code == 2 and "--zoom" in err and "Traceback" not in err
