@@ -6,6 +6,13 @@ A material output is one map a graph produces and a result folder holds: its nam
 output usage, the report's key), its label, its Substance usage, how many channels the engine
 produces, the PNG file it is written to (channels and bit depth) and the colour space Blender
 reads that file in.
+
+Brushed metals add two optional maps: the anisotropy level (0 isotropic, 1 fully anisotropic, on
+Blender's Principled BSDF scale: the lobe's aspect is sqrt(1 - 0.9 level)) and the anisotropy angle,
+the direction of the brushing (the grooves) in turns counter-clockwise from the texture's +u
+towards +v. The highlight stretches across the grooves: Blender's "Anisotropic Rotation", glTF's
+anisotropy direction and the tangent maps of Unreal and Unity are that angle plus a quarter turn
+(``ANISOTROPY_TANGENT_TURN``).
 """
 from __future__ import annotations
 
@@ -39,6 +46,9 @@ MATERIAL_OUTPUTS = (
     MaterialOutput("height", "Height", "height", 1, "height.png", 1, 16, "Non-Color"),
     MaterialOutput("ambientocclusion", "Ambient Occlusion", "ambientOcclusion", 1, "ambientocclusion.png", 1, 8,
                    "Non-Color"),
+    MaterialOutput("anisotropylevel", "Anisotropy", "anisotropyLevel", 1, "anisotropylevel.png", 1, 8, "Non-Color"),
+    MaterialOutput("anisotropyangle", "Anisotropy Angle", "anisotropyAngle", 1, "anisotropyangle.png", 1, 8,
+                   "Non-Color"),
 )
 OUTPUTS = {output.name: output for output in MATERIAL_OUTPUTS}
 USAGES = tuple(OUTPUTS)
@@ -46,6 +56,11 @@ USAGES = tuple(OUTPUTS)
 PBR_USAGES = ("basecolor", "normal", "roughness", "metallic")
 # the maps a library material is authored with and compared on (ambient occlusion is derived)
 AUTHORED_USAGES = (*PBR_USAGES, "height")
+# the anisotropic lobe's maps, optional: a graph without them renders an isotropic lobe
+ANISOTROPY, ANISOTROPY_ANGLE = "anisotropylevel", "anisotropyangle"
+# from the brushing direction (the angle map) to the direction the highlight stretches along, which
+# Blender's "Anisotropic Rotation", glTF and the game engines' tangents name: a quarter turn
+ANISOTROPY_TANGENT_TURN = 0.25
 
 
 @dataclass(frozen=True)

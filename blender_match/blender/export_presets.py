@@ -12,11 +12,15 @@ glTF 2.0 (metallic-roughness):
   glTF reads roughness from G and metallic from B. R holds AO, the common "ORM" packing: a
   material's occlusionTexture (which reads R) may point at the same file, so no separate
   occlusion file is written. glTF has no height map.
+    _anisotropy          RGB  KHR_materials_anisotropy's anisotropyTexture (anisotropic results):
+                              RG = the direction the highlight stretches along, B = the level
 
 Unreal Engine:
     _BaseColor           RGB  base colour (sRGB)
     _Normal              RGB  tangent-space normal, DirectX (G' = 1 - G)
     _ORM                 RGB  R = AO (1 when none), G = roughness, B = metallic
+    _Anisotropy          gray the level, for the material's Anisotropy input (anisotropic results)
+    _Tangent             RGB  the direction the highlight stretches along, DirectX, for "Tangent"
 
 Unity (URP / HDRP Lit, metallic workflow):
     _Albedo              RGB  base colour (sRGB)
@@ -24,8 +28,23 @@ Unity (URP / HDRP Lit, metallic workflow):
     _Normal              RGB  tangent-space normal, OpenGL (Unity's convention)
     _Height              gray height (when the result has one)
     _Occlusion           gray AO (when the result has one)
+    _Anisotropy          gray the level: HDRP Lit's Anisotropy Map (anisotropic results)
+    _Tangent             RGB  the direction the highlight stretches along, OpenGL: HDRP's Tangent Map
   URP's Metallic Map reads only R and A; G and B follow HDRP's Mask Map (G = AO, B = detail
   mask, 1 = detail everywhere, HDRP's own default) so the same file serves as HDRP's Mask Map.
+
+Anisotropy (a result with an anisotropy level map; the angle is 0 when it has none): every format
+takes the direction the highlight stretches along, which is across the brushing, so the angle
+map (the brushing direction) is turned a quarter turn first, as for Blender's "Anisotropic
+Rotation". The direction is a unit vector in the tangent plane, x along +u and y along +v,
+encoded like a normal map (v * 0.5 + 0.5); glTF's RG pair is what Blender's own glTF exporter
+writes (cos, sin of the rotation). The level is written as it is, Blender's 0..1 scale; each
+engine turns a level into roughnesses its own way (glTF mixes the roughness along the direction
+towards 1 by level², Unreal and HDRP scale it by 1 + level along and 1 - level across, Blender
+by 1/aspect and aspect, aspect = sqrt(1 - 0.9 level)), so the same level stretches the
+highlight somewhat differently there; the material's own strength factor (glTF's
+anisotropyStrength, Unreal's and HDRP's Anisotropy) is left at 1 for the map to rule. URP Lit
+has no anisotropy: it ignores the two files.
 
 Formats: PNG at ``bits`` 8 or 16 (16 keeps normal and height smooth); OpenEXR at 16 (half) or
 32 (float) bits. OpenEXR holds linear values, so base colour is converted from sRGB to linear
@@ -48,7 +67,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import BlenderMatchError
-from ..vocabulary import PBR_USAGES, USAGES
+from ..vocabulary import ANISOTROPY, ANISOTROPY_ANGLE, ANISOTROPY_TANGENT_TURN, PBR_USAGES, USAGES
 from .material_builder import graph_name, map_path, read_report, srgb_to_linear
 
 PRESETS = ("gltf", "unreal", "unity")
@@ -95,9 +114,29 @@ def roughness_to_smoothness(roughness: np.ndarray) -> np.ndarray:
     return 1.0 - np.asarray(roughness, dtype=np.float32)
 
 
+def stretch_direction(angle: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The (x, y) components, in [-1, 1], of the unit direction the highlight stretches along
+    (x along +u, y along +v) for an anisotropy angle map (H, W): the brushing direction, in turns,
+    plus a quarter turn."""
+    radians = 2 * np.pi * (np.asarray(angle, dtype=np.float32) + ANISOTROPY_TANGENT_TURN)
+    return np.cos(radians).astype(np.float32), np.sin(radians).astype(np.float32)
+
+
+def _anisotropy_files(preset: str, level: np.ndarray, angle) -> list[PackedMap]:
+    """The anisotropy files of ``preset`` (see the module docstring) for a level map (H, W) and an
+    angle map (H, W) or a constant angle."""
+    x, y = stretch_direction(np.broadcast_to(np.asarray(angle, dtype=np.float32), level.shape))
+    if preset == "gltf":
+        return [PackedMap("_anisotropy", pack_channels([x * 0.5 + 0.5, y * 0.5 + 0.5, level]))]
+    tangent = pack_channels([x * 0.5 + 0.5, y * 0.5 + 0.5, 0.5])
+    return [PackedMap("_Anisotropy", level[..., None]),
+            PackedMap("_Tangent", flip_green(tangent) if preset == "unreal" else tangent)]
+
+
 def pack_preset(preset: str, maps: dict) -> list[PackedMap]:
     """The files of ``preset`` from ``maps``: usage -> array, base colour and normal (H, W, 3),
-    the others (H, W); "height" and "ambientocclusion" may be absent."""
+    the others (H, W); "height", "ambientocclusion" and the anisotropy level and angle may be
+    absent."""
     _check_choice("export preset", preset, PRESETS)
     missing = [u for u in REQUIRED if u not in maps]
     if missing:
@@ -105,14 +144,16 @@ def pack_preset(preset: str, maps: dict) -> list[PackedMap]:
     color, normal, roughness, metallic = (maps[u] for u in REQUIRED)
     ao = maps.get("ambientocclusion")
     occlusion = 1.0 if ao is None else ao
+    anisotropy = [] if ANISOTROPY not in maps else _anisotropy_files(preset, maps[ANISOTROPY],
+                                                                      maps.get(ANISOTROPY_ANGLE, 0.0))
     if preset == "gltf":
         return [PackedMap("_baseColor", color, srgb=True),
                 PackedMap("_metallicRoughness", pack_channels([occlusion, roughness, metallic])),
-                PackedMap("_normal", normal)]
+                PackedMap("_normal", normal), *anisotropy]
     if preset == "unreal":
         return [PackedMap("_BaseColor", color, srgb=True),
                 PackedMap("_Normal", flip_green(normal)),
-                PackedMap("_ORM", pack_channels([occlusion, roughness, metallic]))]
+                PackedMap("_ORM", pack_channels([occlusion, roughness, metallic])), *anisotropy]
     packed = [PackedMap("_Albedo", color, srgb=True),
               PackedMap("_MetallicSmoothness",
                         pack_channels([metallic, occlusion, 1.0, roughness_to_smoothness(roughness)])),
@@ -121,7 +162,7 @@ def pack_preset(preset: str, maps: dict) -> list[PackedMap]:
         packed.append(PackedMap("_Height", maps["height"][..., None]))
     if ao is not None:
         packed.append(PackedMap("_Occlusion", ao[..., None]))
-    return packed
+    return packed + anisotropy
 
 
 def export_maps(result_dir, out_dir, preset, size=None, bits=8, file_format="PNG", name=None,

@@ -10,6 +10,9 @@ changes an existing material or image, so rebuilding cannot destroy a user's edi
         roughness, metallic (Non-Color) -> Principled "Roughness", "Metallic"
         normal (Non-Color, OpenGL = Blender's convention) -> Normal Map (tangent) -> "Normal"
         height (Non-Color) -> Displacement (scale BUMP_SCALE) -> Material Output "Displacement"
+        anisotropy level (Non-Color) -> Principled "Anisotropic"
+        anisotropy angle (Non-Color) -> Add a quarter turn -> Principled "Anisotropic Rotation"
+    Tangent (UV map) -> Principled "Tangent", when the material is anisotropic
     Principled BSDF -> Material Output
 
 The zoom is the fit's (params.json's "calibration.zoom": texture periods across the photo), so a
@@ -21,6 +24,15 @@ adds nothing). Height drives the Displacement output with ``displacement_method`
 works on any mesh in EEVEE and Cycles, whereas true displacement needs a finely subdivided mesh
 and Cycles; users who have one switch the method themselves. Ambient occlusion is left out: the
 Principled BSDF has no input for it and renderers compute their own.
+
+Anisotropy (brushed metals): the angle map is the direction of the brushing, while Blender's
+"Anisotropic Rotation" turns the direction the highlight stretches along, across the brushing, so
+a quarter turn (``vocabulary.ANISOTROPY_TANGENT_TURN``) is added. The Principled BSDF ignores both
+unless its "Tangent" input is linked: a Tangent node of the UV map's u direction (its map left
+empty, so it is the same active render UV map the Texture Coordinate node gives the images)
+makes the rotation relative to the texture's +u. The Mapping node only scales, uniformly, so it
+turns nothing. Without the level map, or with a flat level of 0, neither the tangent nor the angle
+image is added.
 
 What re-rendering needs without the photo (graph, fitted parameters as JSON text, size, loss,
 folder) is stored on the material as the ``"blender_match"`` custom property.
@@ -37,7 +49,16 @@ import numpy as np
 
 from ..colour import SRGB_GAMMA, SRGB_KNEE, SRGB_OFFSET, SRGB_SCALE, SRGB_SLOPE
 from ..errors import ResultFolderError
-from ..vocabulary import CALIBRATION, OUTPUTS, PARAMS_FILE, REPORT_FILE, ZOOM
+from ..vocabulary import (
+    ANISOTROPY,
+    ANISOTROPY_ANGLE,
+    ANISOTROPY_TANGENT_TURN,
+    CALIBRATION,
+    OUTPUTS,
+    PARAMS_FILE,
+    REPORT_FILE,
+    ZOOM,
+)
 
 PROPERTY = "blender_match"
 BUMP_SCALE = 0.02  # metres of relief for the full 0..1 height range: a subtle bump, not a cliff
@@ -46,7 +67,8 @@ BUMP_SCALE = 0.02  # metres of relief for the full 0..1 height range: a subtle b
 # the image nodes are stacked top to bottom.
 IMAGE_MAPS = {usage: (OUTPUTS[usage].label, OUTPUTS[usage].colour_space, principled)
               for usage, principled in (("basecolor", "Base Color"), ("roughness", "Roughness"),
-                                        ("metallic", "Metallic"), ("normal", None), ("height", None))}
+                                        ("metallic", "Metallic"), ("normal", None), ("height", None),
+                                        (ANISOTROPY, "Anisotropic"), (ANISOTROPY_ANGLE, None))}
 
 # Node columns, left to right (x in node-editor units), and the vertical step between images.
 _X = {"coords": -1500, "mapping": -1300, "images": -1000, "converters": -650, "shader": -400,
@@ -117,6 +139,9 @@ def build_material(result_dir, name=None, pack=False, tiling=1.0):
     flat = {u: maps[u]["flat"] for u in IMAGE_MAPS
             if isinstance(maps.get(u), dict) and maps[u].get("flat") is not None}
     files = {u: map_path(result_dir, report, u) for u in IMAGE_MAPS if u in maps and u not in flat}
+    anisotropic = ANISOTROPY in files or flat.get(ANISOTROPY, [0.0])[0] > 0
+    if not anisotropic:  # the angle turns nothing
+        files.pop(ANISOTROPY_ANGLE, None)
     base_name = name or f"Match {graph_name(report, result_dir)}"
 
     material = bpy.data.materials.new(base_name)
@@ -135,6 +160,10 @@ def build_material(result_dir, name=None, pack=False, tiling=1.0):
             image = _load_image(bpy, path, f"{base_name} {usage}", IMAGE_MAPS[usage][1], pack)
             color = _image_node(tree, usage, image, vector, y=_ROW * row)
             _wire(tree, usage, color, shader, output, y=_ROW * row)
+    if anisotropic:
+        tangent = _node(tree, "ShaderNodeTangent", "Tangent", _X["converters"], _ROW * len(files))
+        tangent.direction_type = "UV_MAP"
+        tree.links.new(tangent.outputs["Tangent"], shader.inputs["Tangent"])
     material[PROPERTY] = _record(report, params, result_dir)
     return material
 
@@ -216,6 +245,12 @@ def _wire(tree, usage: str, color, shader, output, y: float):
     target = IMAGE_MAPS[usage][2]
     if target:
         tree.links.new(color, shader.inputs[target])
+    elif usage == ANISOTROPY_ANGLE:
+        turn = _node(tree, "ShaderNodeMath", "Anisotropic Rotation", _X["converters"], y)
+        turn.operation = "ADD"
+        turn.inputs[1].default_value = ANISOTROPY_TANGENT_TURN
+        tree.links.new(color, turn.inputs[0])
+        tree.links.new(turn.outputs["Value"], shader.inputs["Anisotropic Rotation"])
     elif usage == "normal":
         normal_map = _node(tree, "ShaderNodeNormalMap", "Normal Map", _X["converters"], y)
         normal_map.space = "TANGENT"
@@ -230,11 +265,15 @@ def _wire(tree, usage: str, color, shader, output, y: float):
 
 
 def _set_flat_values(shader, flat: dict):
-    """Flat maps as the Principled BSDF's default values (base colour converted to linear)."""
+    """Flat maps as the Principled BSDF's default values (base colour converted to linear, the
+    anisotropy angle turned a quarter)."""
     if "basecolor" in flat:
         rgb = list(flat["basecolor"])
         rgb = rgb * 3 if len(rgb) == 1 else rgb[:3]
         shader.inputs["Base Color"].default_value = (*(float(c) for c in srgb_to_linear(rgb)), 1.0)
-    for usage in ("roughness", "metallic"):
+    for usage in ("roughness", "metallic", ANISOTROPY):
         if usage in flat:
             shader.inputs[IMAGE_MAPS[usage][2]].default_value = float(flat[usage][0])
+    if ANISOTROPY_ANGLE in flat:
+        rotation = (float(flat[ANISOTROPY_ANGLE][0]) + ANISOTROPY_TANGENT_TURN) % 1.0
+        shader.inputs["Anisotropic Rotation"].default_value = rotation

@@ -5,8 +5,8 @@ normal and ambient occlusion of a height map)."""
 from __future__ import annotations
 
 from ..translator.runtime import SbsGraph
-from ..vocabulary import AUTHORED_USAGES
-from .expressions import const
+from ..vocabulary import ANISOTROPY, ANISOTROPY_ANGLE, AUTHORED_USAGES
+from .expressions import Expr, const, gray4
 
 # Substance's blending-mode codes (the blend node's ``blendingmode``)
 COPY, ADD, SUBTRACT, MULTIPLY, ADD_SUB, MAX, MIN, SWITCH, DIVIDE, OVERLAY, SCREEN, SOFT_LIGHT = range(12)
@@ -26,13 +26,24 @@ def constant_map(g: SbsGraph, name: str, value: float) -> str:
     return name
 
 
-def set_material_outputs(g: SbsGraph, ambient_occlusion: str | None = None):
+def set_material_outputs(g: SbsGraph, ambient_occlusion: str | None = None, anisotropy: bool = False):
     """Name the five material maps after the nodes of the same names (and optionally the ambient
-    occlusion node)."""
-    for usage in AUTHORED_USAGES:
+    occlusion node; with ``anisotropy``, the anisotropy level and angle after the nodes
+    ``anisotropylevel`` and ``anisotropyangle``, which ``brushing`` adds)."""
+    for usage in (*AUTHORED_USAGES, *((ANISOTROPY, ANISOTROPY_ANGLE) if anisotropy else ())):
         g.set_output(usage, usage)
     if ambient_occlusion:
         g.set_output("ambientocclusion", ambient_occlusion)
+
+
+def brushing(g: SbsGraph, level: Expr, angle: float) -> None:
+    """The anisotropic highlight of a brushed metal: the level map (``ANISOTROPY``) a flat grey
+    bound to ``level``, an expression of exposed parameters (so the fit moves it), and the angle
+    map (``ANISOTROPY_ANGLE``) pinned to ``angle``, the direction of the brushing streaks in turns
+    counter-clockwise from +u (a graph's streaks do not turn with a parameter)."""
+    g.add(ANISOTROPY, "uniform", colorswitch=False)
+    g.bind(ANISOTROPY, "outputcolor", gray4(level).graph())
+    constant_map(g, ANISOTROPY_ANGLE, angle)
 
 
 def color_over(g: SbsGraph, name: str, color_name: str, color, destination: str, mask: str | None = None,

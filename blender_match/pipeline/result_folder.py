@@ -3,8 +3,9 @@ replace files that are already there.
 
 A result folder holds the material's maps (``vocabulary.MATERIAL_OUTPUTS``: basecolor.png sRGB
 8-bit, normal.png OpenGL 16-bit, roughness.png, metallic.png, height.png 16-bit,
-ambientocclusion.png when the graph has it), ``params.json`` (reloadable:
-``pipeline.render_params``), ``comparison.png`` (photo | render | maps) and ``report.json``.
+ambientocclusion.png, anisotropylevel.png and anisotropyangle.png when the graph has them),
+``params.json`` (reloadable: ``pipeline.render_params``), ``comparison.png`` (photo | render |
+maps) and ``report.json``.
 """
 from __future__ import annotations
 

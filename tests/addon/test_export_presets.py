@@ -14,11 +14,12 @@ from blender_match.blender.export_presets import (
     pack_channels,
     pack_preset,
     roughness_to_smoothness,
+    stretch_direction,
 )
 from blender_match.blender.material_builder import srgb_to_linear
 from blender_match.errors import ResultFolderError
 from blender_match.image_files import write_png
-from blender_match.vocabulary import MATERIAL_OUTPUTS
+from blender_match.vocabulary import ANISOTROPY, ANISOTROPY_ANGLE, MATERIAL_OUTPUTS
 
 W, H = 8, 4
 PNG_DEPTH, PNG_COLOR_TYPE = 24, 25  # byte offsets in the IHDR chunk
@@ -112,6 +113,46 @@ def test_unity_metallic_smoothness_and_optional_maps():
     assert np.all(bare["_MetallicSmoothness"].pixels[..., 1] == 1.0)
 
 
+def test_the_stretch_direction_is_the_brushing_turned_a_quarter():
+    x, y = stretch_direction(np.array([0.0, 0.25, 0.125]))
+    assert np.allclose(x, [0.0, -1.0, -np.sqrt(0.5)], atol=1e-6) and np.allclose(y, [1.0, 0.0, np.sqrt(0.5)], atol=1e-6)
+
+
+def brushed(maps, angle=True):
+    """``maps`` with an anisotropy level and (``angle``) an angle map of 1/8 turn, brushed towards
+    +u+v: the highlight stretches along -u+v."""
+    maps[ANISOTROPY] = np.random.default_rng(2).random((H, W), np.float32)
+    if angle:
+        maps[ANISOTROPY_ANGLE] = np.full((H, W), 0.125, np.float32)
+    return maps
+
+
+def test_each_preset_carries_the_anisotropy_its_format_takes():
+    maps = brushed(random_maps())
+    half = np.sqrt(0.5) * 0.5
+    gltf = by_suffix(pack_preset("gltf", maps))
+    assert list(gltf)[-1] == "_anisotropy"
+    aniso = gltf["_anisotropy"].pixels
+    assert np.allclose(aniso[..., 0], 0.5 - half) and np.allclose(aniso[..., 1], 0.5 + half)
+    assert np.array_equal(aniso[..., 2], maps[ANISOTROPY])
+    for preset, green in (("unreal", 0.5 - half), ("unity", 0.5 + half)):  # Unreal's tangent space is DirectX
+        files = by_suffix(pack_preset(preset, maps))
+        assert list(files)[-2:] == ["_Anisotropy", "_Tangent"]
+        assert np.array_equal(files["_Anisotropy"].pixels[..., 0], maps[ANISOTROPY])
+        tangent = files["_Tangent"].pixels
+        assert tangent.shape == (H, W, 3) and not files["_Tangent"].srgb
+        assert np.allclose(tangent[..., 0], 0.5 - half) and np.allclose(tangent[..., 1], green)
+        assert np.all(tangent[..., 2] == 0.5)
+
+
+def test_without_an_angle_map_the_brushing_runs_along_u_and_without_a_level_nothing_is_added():
+    aniso = by_suffix(pack_preset("gltf", brushed(random_maps(), angle=False)))["_anisotropy"].pixels
+    assert np.allclose(aniso[..., 0], 0.5, atol=1e-6) and np.allclose(aniso[..., 1], 1.0)
+    only_angle = random_maps()
+    only_angle[ANISOTROPY_ANGLE] = np.zeros((H, W), np.float32)
+    assert list(by_suffix(pack_preset("unity", only_angle)))[-1] == "_Occlusion"
+
+
 def test_pack_preset_errors():
     with pytest.raises(ExportError, match="unknown export preset 'godot'"):
         pack_preset("godot", random_maps())
@@ -130,12 +171,13 @@ def bpy():
     return module
 
 
-def make_result(root, ao=True):
-    """A result folder as the pipeline writes it (random maps; ``flat`` all None)."""
+def make_result(root, ao=True, anisotropy=False):
+    """A result folder as the pipeline writes it (random maps; ``flat`` all None); the anisotropy
+    maps only with ``anisotropy`` (a brushed metal's)."""
     root.mkdir(parents=True)
     maps = {}
     for usage, file, channels, bits in ((o.name, o.file, o.file_channels, o.bits) for o in MATERIAL_OUTPUTS):
-        if usage == "ambientocclusion" and not ao:
+        if (usage == "ambientocclusion" and not ao) or (usage in (ANISOTROPY, ANISOTROPY_ANGLE) and not anisotropy):
             continue
         write_png(root / file, torch.rand(1, channels, H, W), bits=bits)
         maps[usage] = {"file": file, "flat": None}
@@ -209,6 +251,24 @@ def test_unity_metallic_smoothness_alpha(bpy, tmp_path, bits):
     assert np.abs(ms[..., 3] - (1 - roughness)).max() <= tolerance
     assert np.abs(ms[..., 0] - read(bpy, result / "metallic.png")[..., 0]).max() <= tolerance
     assert np.abs(read(bpy, paths[3])[..., 0] - read(bpy, result / "height.png")[..., 0]).max() <= 1 / 255
+
+
+def test_anisotropic_results_export_their_anisotropy_files(bpy, tmp_path):
+    result = make_result(tmp_path / "r", anisotropy=True)
+    level = read(bpy, result / "anisotropylevel.png")[..., 0]
+    x, y = stretch_direction(read(bpy, result / "anisotropyangle.png")[..., 0])
+    gltf = export_maps(result, tmp_path / "gltf", "gltf")
+    assert gltf[-1].name == "marble_anisotropy.png" and png_header(gltf[-1]) == (8, RGB)
+    packed = read(bpy, gltf[-1])
+    assert np.abs(packed[..., 2] - level).max() <= 1 / 255
+    assert np.abs(packed[..., 0] - (x * 0.5 + 0.5)).max() <= 1 / 255
+    assert np.abs(packed[..., 1] - (y * 0.5 + 0.5)).max() <= 1 / 255
+    for preset, sign in (("unreal", -1), ("unity", 1)):
+        paths = export_maps(result, tmp_path / preset, preset)
+        assert [p.name for p in paths[-2:]] == ["marble_Anisotropy.png", "marble_Tangent.png"]
+        assert [png_header(p) for p in paths[-2:]] == [(8, GRAY), (8, RGB)]
+        assert np.abs(read(bpy, paths[-2])[..., 0] - level).max() <= 1 / 255
+        assert np.abs(read(bpy, paths[-1])[..., 1] - (sign * y * 0.5 + 0.5)).max() <= 1 / 255
 
 
 def test_exr_is_linear_float(bpy, tmp_path):

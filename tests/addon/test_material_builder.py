@@ -7,7 +7,7 @@ import pytest
 import torch
 
 from blender_match.image_files import write_png
-from blender_match.vocabulary import CALIBRATION, MATERIAL_OUTPUTS, USAGES, ZOOM
+from blender_match.vocabulary import ANISOTROPY, ANISOTROPY_ANGLE, CALIBRATION, MATERIAL_OUTPUTS, USAGES, ZOOM
 
 bpy = pytest.importorskip("bpy")
 
@@ -29,13 +29,14 @@ def _empty_blender():
     yield
 
 
-def make_result(root, flat=None, ao=True, graph="marble", params=PARAMS):
-    """A result folder as the pipeline writes it; ``flat`` maps usage -> constant value."""
+def make_result(root, flat=None, ao=True, graph="marble", params=PARAMS, anisotropy=False):
+    """A result folder as the pipeline writes it; ``flat`` maps usage -> constant value; the
+    anisotropy maps only with ``anisotropy`` (a brushed metal's)."""
     flat = flat or {}
     root.mkdir(parents=True, exist_ok=True)
     maps = {}
     for usage, file, channels, bits in ((o.name, o.file, o.file_channels, o.bits) for o in MATERIAL_OUTPUTS):
-        if usage == "ambientocclusion" and not ao:
+        if (usage == "ambientocclusion" and not ao) or (usage in (ANISOTROPY, ANISOTROPY_ANGLE) and not anisotropy):
             continue
         if usage in flat:
             img = torch.full((1, channels, H, W), flat[usage])
@@ -140,6 +141,59 @@ def test_all_maps_flat_needs_no_coordinates(tmp_path):
     flat = {u: 0.5 for u in USAGES}
     tree = build_material(make_result(tmp_path / "r", flat=flat)).node_tree
     assert node_types(tree) == ["ShaderNodeBsdfPrincipled", "ShaderNodeOutputMaterial"]
+    anisotropic = build_material(make_result(tmp_path / "a", flat=flat, anisotropy=True)).node_tree
+    assert node_types(anisotropic) == ["ShaderNodeBsdfPrincipled", "ShaderNodeOutputMaterial", "ShaderNodeTangent"]
+
+
+def test_anisotropy_maps_feed_the_principled_bsdf_with_a_uv_tangent(tmp_path):
+    """The level goes to "Anisotropic"; the angle (the brushing's) plus a quarter turn to
+    "Anisotropic Rotation" (the direction the highlight stretches along, across the brushing);
+    a Tangent node of the UV map, the one the images read, makes it turn from the texture's +u."""
+    tree = build_material(make_result(tmp_path / "r", anisotropy=True)).node_tree
+    assert linked(tree, "Anisotropy", "Color", "Principled BSDF", "Anisotropic")
+    assert linked(tree, "Anisotropy Angle", "Color", "Anisotropic Rotation", "Value")
+    assert linked(tree, "Anisotropic Rotation", "Value", "Principled BSDF", "Anisotropic Rotation")
+    turn = tree.nodes["Anisotropic Rotation"]
+    assert turn.operation == "ADD" and turn.inputs[1].default_value == pytest.approx(0.25)
+    tangent = tree.nodes["Tangent"]
+    assert (tangent.direction_type, tangent.uv_map) == ("UV_MAP", "")  # "": the active UV map, as the images'
+    assert linked(tree, "Tangent", "Tangent", "Principled BSDF", "Tangent")
+    assert linked(tree, "Tiling", "Vector", "Anisotropy", "Vector")
+    assert linked(tree, "Tiling", "Vector", "Anisotropy Angle", "Vector")
+    for name in ("Anisotropy", "Anisotropy Angle"):
+        assert tree.nodes[name].image.colorspace_settings.name == "Non-Color"
+    x = {node.name: node.location.x for node in tree.nodes}
+    assert x["Anisotropy Angle"] < x["Anisotropic Rotation"] < x["Principled BSDF"]
+    assert x["Tangent"] < x["Principled BSDF"]
+
+
+def test_flat_anisotropy_becomes_values_and_a_flat_zero_adds_nothing(tmp_path):
+    flat = {ANISOTROPY: 0.7, ANISOTROPY_ANGLE: 0.875}
+    tree = build_material(make_result(tmp_path / "r", flat=flat, anisotropy=True)).node_tree
+    principled = tree.nodes["Principled BSDF"]
+    assert principled.inputs["Anisotropic"].default_value == pytest.approx(0.7)
+    assert principled.inputs["Anisotropic Rotation"].default_value == pytest.approx(0.125)  # 0.875 + 0.25, mod 1
+    assert linked(tree, "Tangent", "Tangent", "Principled BSDF", "Tangent")
+    images = {n.name for n in tree.nodes if n.bl_idname == "ShaderNodeTexImage"}
+    assert "Anisotropy" not in images and "Anisotropy Angle" not in images
+    isotropic = build_material(make_result(tmp_path / "z", flat={ANISOTROPY: 0.0}, anisotropy=True)).node_tree
+    assert "ShaderNodeTangent" not in node_types(isotropic) and "ShaderNodeMath" not in node_types(isotropic)
+    assert not any("anisotropyangle" in image.name for image in bpy.data.images if image.name.startswith("Match"))
+    assert isotropic.nodes["Principled BSDF"].inputs["Anisotropic"].default_value == 0.0
+
+
+def test_the_built_material_renders_in_cycles_as_our_renderer(tmp_path):
+    """End to end: a result folder with an angle map of 1/8 turn (brushed towards +u+v), built
+    and rendered by Cycles under the flash, stretches its highlight along -u+v, as ours does."""
+    from cycles_flash import CyclesFlash, highlight
+
+    flat = {"basecolor": 0.8, "roughness": 0.5, "metallic": 1.0, "normal": 0.5, "height": 0.5, ANISOTROPY: 0.8}
+    result = make_result(tmp_path / "r", flat=flat, ao=False, anisotropy=True)
+    write_png(result / "anisotropyangle.png", torch.full((1, 1, H, W), 32 / 255), bits=8, overwrite=True)
+    cycles = CyclesFlash(bpy, tmp_path / "cycles")
+    cycles.use(build_material(result))
+    axis, aspect = highlight(cycles.render_scene())
+    assert abs(axis - (0.125 + 0.25) * 360 % 180) < 1.5 and aspect > 2.0
 
 
 def test_second_build_makes_new_material_and_images(tmp_path):

@@ -104,3 +104,35 @@ def test_main_exposed_parameter_drives_the_maps(built, name):
         graph.clear_cache()
     change = max(float((after[u] - before[u]).abs().max()) for u in ("basecolor", "height"))
     assert change > 0.02, f"{name}: exposed {main} does not change basecolor or height"
+
+
+@pytest.mark.parametrize("name, painted", [("brushed_metal", {}), ("perforated_metal", {"paint": 1.0})])
+def test_brushed_metals_are_anisotropic_and_the_fit_can_move_the_level(name, painted):
+    """The level is a flat map bound to exposed parameters (a render's gradient reaches them; paint
+    takes it away), the angle a pinned 0: the brushing streaks run along +u."""
+    from blender_match.diffmat.render import render_maps
+
+    torch.manual_seed(0)
+    graph = build_source(name)
+    maps = graph(size=32, seed=0)
+    level, angle = maps["anisotropylevel"].detach(), maps["anisotropyangle"].detach()
+    assert level.shape == angle.shape == (1, 1, 32, 32)
+    assert float(level.max() - level.min()) < 1e-6 and float(level.mean()) > 0.3
+    assert float(angle.abs().max()) == 0.0 and "outputcolor" in graph.bindings[graph.outputs["anisotropyangle"][0]]
+    render_maps(maps).mean().backward()
+    assert any(p.grad is not None and float(p.grad.abs().sum()) > 0 for p in graph.exposed.theta.values())
+    if painted:
+        graph.exposed.set_values(**{k: torch.tensor(v) for k, v in painted.items()})
+        graph.clear_cache()
+        with torch.no_grad():
+            assert float(graph(size=32, seed=0)["anisotropylevel"].max()) == 0.0
+
+
+def test_the_brushed_metal_streaks_run_along_u(built):
+    """The angle map's 0 is where the streaks point: the height changes far more from row to row
+    than along a row."""
+    _, maps = built("brushed_metal")
+    height = maps["height"][0, 0]
+    across = float((height.roll(-1, 0) - height).pow(2).mean())
+    along = float((height.roll(-1, 1) - height).pow(2).mean())
+    assert across > 5 * along  # 8 times at 64 px

@@ -227,6 +227,22 @@ def test_pixel_and_value_processors(tmp_path):
     torch.testing.assert_close(out["basecolor"][0, :, 0, 0], torch.tensor([0.5, 0.5, 0.5, 1.0]))
 
 
+def test_anisotropy_usages_map_to_the_anisotropy_outputs(tmp_path):
+    """Outputs whose usage is anisotropyLevel / anisotropyAngle become the anisotropy level and
+    angle maps, one channel each (a colour output is reduced to grey), which the renderer reads."""
+    nodes = [_uniform(10, "0.5 0.5 0.5 1"), _uniform(20, "0.7 0.7 0.7 1", comptype=2),
+             _uniform(30, "0.2 0.2 0.2 1"), W.output_node(40, 100, 10, 11), W.output_node(41, 101, 20, 21),
+             W.output_node(42, 102, 30, 31)]
+    doc = W.package([W.graph("Brushed", nodes, outputs=[(100, "basecolor", "baseColor"),
+                                                        (101, "aniso", "anisotropyLevel"),
+                                                        (102, "aniso_angle", "anisotropyAngle")])])
+    out = translate(_write(tmp_path, doc)).graph(size=SIZE)
+    assert set(out) == {"basecolor", "anisotropylevel", "anisotropyangle"}
+    assert out["anisotropylevel"].shape == out["anisotropyangle"].shape == (1, 1, SIZE, SIZE)
+    torch.testing.assert_close(out["anisotropylevel"][0, 0, 0, 0], torch.tensor(0.7))
+    torch.testing.assert_close(out["anisotropyangle"][0, 0, 0, 0], torch.tensor(0.2))
+
+
 def test_graph_selection(tmp_path):
     path = _write(tmp_path, _instance_doc())
     assert translate(path, graph_name="Sub").report["graph"] == "sub"

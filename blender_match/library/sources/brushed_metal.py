@@ -6,13 +6,15 @@ generators (along the grain and random) give a scratch mask; a grunge map gives 
 noise adds large, soft variation. Height = streaks minus scratch grooves; normal from height. Base
 colour = the metal tint times a gradient map of the streaks, with brighter scratches and darker
 smudges. Roughness = the streaks remapped around the roughness slider, smoother in scratches and
-rougher under smudges. Metallic = 1.
+rougher under smudges. Metallic = 1. The brushing also makes the highlight anisotropic: the
+anisotropy level is the ``anisotropy`` slider and the angle 0, the streaks running along +u (so the
+highlight stretches along v, across them).
 
 Exposed parameters: ``metal_color`` (sRGB tint), ``roughness``, ``brush_strength`` (contrast of the
 brushing in colour, roughness and relief), ``scratches`` (scratch visibility), ``smudges``
-(fingerprint amount), ``normal_intensity``.
+(fingerprint amount), ``normal_intensity``, ``anisotropy`` (how far the highlight stretches).
 """
-from blender_match.library.authoring import color_over, constant_map, set_material_outputs
+from blender_match.library.authoring import brushing, color_over, constant_map, set_material_outputs
 from blender_match.library.expressions import get, gray4, vector
 from blender_match.translator.runtime import SbsGraph
 
@@ -25,6 +27,7 @@ def build() -> SbsGraph:
     g.expose("scratches", 0.35, min=0.0, max=1.0)
     g.expose("smudges", 0.3, min=0.0, max=1.0)
     g.expose("normal_intensity", 1.2, min=0.0, max=4.0)
+    g.expose("anisotropy", 0.6, min=0.0, max=1.0)
 
     # brushing streaks
     g.add("streak_fine", "anisotropic_noise", seed=11, x_amount=3, y_amount=256, smoothness=0.25)
@@ -93,8 +96,9 @@ def build() -> SbsGraph:
           blendingmode=2, opacitymult=0.25)
 
     constant_map(g, "metallic", 1.0)
+    brushing(g, get("anisotropy"), 0.0)  # the streaks (anisotropic noise, motion blur at angle 0) run along +u
 
-    set_material_outputs(g)
+    set_material_outputs(g, anisotropy=True)
     return g
 
 
@@ -107,6 +111,7 @@ SAMPLE_RANGES = {
     "exposed.scratches": (0.0, 0.8),
     "exposed.smudges": (0.0, 0.7),
     "exposed.normal_intensity": (0.4, 2.5),
+    "exposed.anisotropy": (0.2, 0.9),
     "grain_smear.intensity": (8.0, 32.0),
     "streak_mix.opacitymult": (0.1, 0.8),
     "clouds.scale": (1.0, 3.0),

@@ -14,6 +14,8 @@ Structure
   edges (a ring from the blurred holes, broken up by a grunge map; exposed wear) showing bare
   grey steel.
 - Holes: near-black, fully rough, non-metallic backdrop in colour, roughness and metallic.
+- Anisotropy: the brushing stretches the plate's highlight across the streaks, which run along
+  +u (angle 0): the level is ``brushing`` on bare metal, nothing under paint.
 
 Exposed parameters
 - ``finish_color`` (float3): the plate colour: steel/aluminium grey or any paint colour.
@@ -30,6 +32,7 @@ from blender_match.library.authoring import (
     MULTIPLY,
     OVERLAY,
     SUBTRACT,
+    brushing,
     color_over,
     gradient_over,
     normal_and_ao,
@@ -110,7 +113,9 @@ def build() -> SbsGraph:
     g.add("metallic", "blend", {"source": "plate_mask", "destination": "metal_chipped"},
           blendingmode=MULTIPLY)
 
-    set_material_outputs(g, ambient_occlusion="ao")
+    brushing(g, get("brushing") * (1.0 - get("paint")), 0.0)  # anisotropic noise, motion blur at 0: along +u
+
+    set_material_outputs(g, ambient_occlusion="ao", anisotropy=True)
     return g
 
 
