@@ -1,7 +1,9 @@
 """Shared fixtures and checks for the test suite."""
 from __future__ import annotations
 
+import atexit
 import os
+import shutil
 import tempfile
 from pathlib import Path
 
@@ -14,6 +16,7 @@ from blender_match.library.catalog import USER_LIBRARY_ENV
 keep_freed_memory()  # as the command line and the worker do: the suite runs faster
 # the suite sees an empty user library of its own (subprocesses inherit it), never the developer's
 os.environ[USER_LIBRARY_ENV] = tempfile.mkdtemp(prefix="blender-match-user-library-")
+atexit.register(shutil.rmtree, os.environ[USER_LIBRARY_ENV], ignore_errors=True)  # gone when the run ends
 ROOT = Path(__file__).resolve().parents[1]
 SHARED = Path(os.environ.get("BLENDER_MATCH_SHARED", ROOT.parent / "shared"))
 

@@ -193,6 +193,32 @@ def test_no_private_name_is_imported_from_another_module():
     assert private == []
 
 
+def _module_aliases(tree: ast.Module, package: str) -> set[str]:
+    """Local names an ``import`` statement binds to one of the package's modules."""
+    aliases = set()
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Import):
+            aliases |= {a.asname for a in node.names if a.asname and internal(a.name)}
+        elif isinstance(node, ast.ImportFrom):
+            base = package.split(".")[:len(package.split(".")) - (node.level - 1)] if node.level else []
+            target = ".".join(base + ([node.module] if node.module else []))
+            aliases |= {a.asname or a.name for a in node.names if f"{target}.{a.name}" in modules()}
+    return aliases
+
+
+def test_no_private_name_is_reached_through_another_module():
+    """``module._name`` is the same breach as ``from module import _name``."""
+    reached = []
+    for module, path in modules().items():
+        package = module if path.name == "__init__.py" else module.rpartition(".")[0]
+        tree = ast.parse(path.read_text(encoding="utf-8"))
+        aliases = _module_aliases(tree, package)
+        reached += [f"{module}:{n.lineno} reaches {n.value.id}.{n.attr}" for n in ast.walk(tree)
+                    if isinstance(n, ast.Attribute) and isinstance(n.value, ast.Name) and n.value.id in aliases
+                    and n.attr.startswith("_") and not n.attr.startswith("__")]
+    assert reached == []
+
+
 def test_the_foundation_imports_only_the_standard_library_and_itself():
     bad = []
     for module in modules():

@@ -120,7 +120,7 @@ def infer_types(graph: dict) -> dict[str, tuple[str, int]]:
     """(kind, components) of every node of a function graph, from function names and inputs."""
     nodes = graph["nodes"]
     out: dict[str, tuple[str, int]] = {}
-    for nid in fg_engine._order(graph):
+    for nid in fg_engine.reachable_order(graph):
         node = nodes[nid]
         fn, ins = node["function"], node.get("inputs") or {}
         first = next((out[ins[p]] for p in fg_engine.FUNCTIONS[fn] if p in ins), ("float", 1))
@@ -166,7 +166,7 @@ def _input_type(types: dict[str, tuple[str, int]], inputs: dict[str, str], port:
 def _dynamic(parent, graph: dict, uids) -> None:
     fg_engine.validate(graph)
     types = infer_types(graph)
-    order = fg_engine._order(graph)
+    order = fg_engine.reachable_order(graph)
     ids = {nid: uids() for nid in order}
     dyn = etree.SubElement(parent, "dynamicValue")
     _v(dyn, "rootnode", ids[graph["root"]])

@@ -117,7 +117,7 @@ def _parse_data(fn: str, pn):
 
 def compact(graph: dict) -> dict:
     """Keep the nodes reachable from the root, renumbered "0", "1", ... inputs first."""
-    order = fg_engine._order(graph)
+    order = fg_engine.reachable_order(graph)
     names = {old: str(i) for i, old in enumerate(order)}
     nodes = {}
     for old in order:
@@ -142,7 +142,8 @@ def constant_graph(fn: str, value) -> dict:
         return {"nodes": {"0": {"function": "const_bool", "inputs": {}, "data": bool(v)}}, "root": "0"}
     n = int(fn[-1]) if fn[-1].isdigit() else 1
     nums = list(value) if isinstance(value, (list, tuple)) else [value]
-    nums = fit_components([float(x) if not fn.startswith("get_integer") else int(x) for x in nums], n)
+    nums = fit_components([float(x) if not fn.startswith("get_integer") else int(x) for x in nums], n,
+                          _widening_fill(n))
     const = ("const_int" if fn.startswith("get_integer") else "const_float") + str(n)
     return {"nodes": {"0": {"function": const, "inputs": {}, "data": nums[0] if n == 1 else nums}}, "root": "0"}
 
@@ -153,12 +154,70 @@ def getter(kind: str, n: int, name: str) -> dict:
     return {"nodes": {"0": {"function": fn, "inputs": {}, "data": name}}, "root": "0"}
 
 
+def _widening_fill(n: int) -> list:
+    """The components a vector widened to ``n`` gets, as Substance converts: 0, and an alpha of 1
+    for a 4-vector (a float3 colour into a float4 one is opaque)."""
+    return [0] * (n - 1) + [1] if n == 4 else [0] * n
+
+
+_WIDTH_ONE = {"tofloat", "dot", "length", "samplelum", "atan2", "const_bool", "get_bool", "const_string",
+              "get_string", "and", "or", "not", "eq", "noteq", "gt", "gteq", "lr", "lreq"}
+_WIDTH_FIXED = {"cross": 3, "cartesian": 2, "samplecol": 4}
+_WIDTH_OF_INPUT = {"ifelse": ("ifpath", "elsepath"), "sequence": ("seqlast",), "mulscalar": ("a",)}
+_WIDTH_NAMED = ("const_", "get_", "vector", "ivector", "swizzle", "iswizzle", "tofloat", "toint")
+
+
+def result_width(graph: dict) -> int | None:
+    """How many components a function graph returns, read from the function names (``get_float3``,
+    ``swizzle2``...) and, for arithmetic, from the widest input; None when it cannot be told."""
+    widths: dict[str, int | None] = {}
+    for nid in fg_engine.reachable_order(graph):  # inputs before their consumers
+        node = graph["nodes"][nid]
+        fn, inputs = node["function"], node.get("inputs") or {}
+        if fn in _WIDTH_ONE:
+            widths[nid] = 1
+        elif fn in _WIDTH_FIXED:
+            widths[nid] = _WIDTH_FIXED[fn]
+        elif fn.startswith(_WIDTH_NAMED) and fn[-1].isdigit():
+            widths[nid] = int(fn[-1])
+        else:
+            found = [widths.get(inputs[p]) for p in _WIDTH_OF_INPUT.get(fn, tuple(inputs)) if p in inputs]
+            widths[nid] = max(found) if found and None not in found else None  # type: ignore[type-var]
+    return widths.get(graph["root"])
+
+
+def fit_width(sub: dict, getter_fn: str) -> dict:
+    """``sub`` (a function graph substituted for the ``getter_fn`` node) made as wide as the getter
+    reads, as Substance converts between vector types: one component fills them all, extra ones are
+    dropped, missing ones are 0 (alpha 1). A parameter can be given a value of another width than
+    its declaration: an instance's float3 colour for a sub-graph's float4 parameter, a float4 for a
+    float1..."""
+    if not getter_fn[-1].isdigit():
+        return sub
+    n, m = int(getter_fn[-1]), result_width(sub)
+    if m is None or m == n:
+        return sub
+    integer = getter_fn.startswith("get_integer")
+    nodes, root = dict(sub["nodes"]), sub["root"]
+    if m == 1 or m > n:
+        fit = {"function": ("iswizzle" if integer else "swizzle") + str(n), "inputs": {"vector": root},
+               "data": [0] * n if m == 1 else list(range(n))}
+    else:
+        rest = _widening_fill(n)[m:]
+        nodes["fill"] = {"function": ("const_int" if integer else "const_float") + str(n - m), "inputs": {},
+                         "data": rest[0] if len(rest) == 1 else rest}
+        fit = {"function": ("ivector" if integer else "vector") + str(n),
+               "inputs": {"componentsin": root, "componentslast": "fill"}}
+    nodes["fit"] = fit
+    return {"nodes": nodes, "root": "fit"}
+
+
 def substitute(graph: dict, env: dict) -> dict:
     """Replace every ``get_*`` node whose variable is in ``env`` by ``env[variable]``: a function
     graph, a Value, or a plain constant (shaped by the getter's type)."""
     nodes: dict[str, dict] = {}
     remap: dict[str, str] = {}
-    for nid in fg_engine._order(graph):
+    for nid in fg_engine.reachable_order(graph):
         node = graph["nodes"][nid]
         fn, data = node["function"], node.get("data")
         if fn.startswith("get_") and isinstance(data, str) and data in env:
@@ -167,6 +226,8 @@ def substitute(graph: dict, env: dict) -> dict:
                 sub = constant_graph(fn, sub)
             elif sub["nodes"][sub["root"]]["function"].startswith("const_") and len(sub["nodes"]) == 1:
                 sub = constant_graph(fn, sub["nodes"][sub["root"]].get("data", 0))
+            else:
+                sub = fit_width(sub, fn)
             prefix = f"{nid}_"
             for sid, snode in sub["nodes"].items():
                 inputs = snode.get("inputs") or {}

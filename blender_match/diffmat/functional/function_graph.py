@@ -48,7 +48,8 @@ from ..errors import DiffMatError
 from .common import broadcast_shape, sample_wrap
 
 # re-exported by diffmat.functional under these prefixed names
-__all__ = ["evaluate_function_graph", "validate_function_graph", "load_function_graph", "compile_function_graph"]
+__all__ = ["evaluate_function_graph", "validate_function_graph", "load_function_graph", "compile_function_graph",
+           "reachable_order"]
 
 MAX_NODES = 20000
 
@@ -206,11 +207,11 @@ def _check_acyclic(nodes: dict):
 
 def variables_of(graph: dict) -> set[str]:
     """Names read by the ``get_*`` nodes reachable from the root."""
-    return {graph["nodes"][n].get("data") for n in _order(graph)
+    return {graph["nodes"][n].get("data") for n in reachable_order(graph)
             if graph["nodes"][n]["function"].startswith("get_")}
 
 
-def _order(graph: dict) -> list[str]:
+def reachable_order(graph: dict) -> list[str]:
     """Nodes reachable from the root, inputs before consumers (ports in declaration order)."""
     nodes, out, seen = graph["nodes"], [], set()
     stack = [(graph["root"], False)]
@@ -335,7 +336,7 @@ class CompiledGraph:
     def __init__(self, graph: dict):
         validate(graph)
         nodes = graph["nodes"]
-        order = _order(graph)
+        order = reachable_order(graph)
         self.variables = {nodes[n].get("data") for n in order if nodes[n]["function"].startswith("get_")}
         self._root = graph["root"]
         self._steps = [(nid, nodes[nid]["function"], tuple((nodes[nid].get("inputs") or {}).items()),
