@@ -24,11 +24,12 @@ from ..errors import BlenderMatchError
 from ..image_files import write_png
 from ..material_maps import to_channels, write_maps
 from ..safe_files import FileWriteError, write_atomic
-from ..vocabulary import AUTHORED_USAGES, COMPARISON_FILE, OUTPUTS, PARAMS_FILE, REPORT_FILE
+from ..vocabulary import ANISOTROPY, AUTHORED_USAGES, COMPARISON_FILE, OUTPUTS, PARAMS_FILE, REPORT_FILE
 from .progress import JobProgress
 
 MATCH_FILES = (PARAMS_FILE, COMPARISON_FILE, REPORT_FILE)
 COMPARISON_TILE = 256
+COMPARED_MAPS = (*AUTHORED_USAGES, ANISOTROPY)  # the maps comparison.png shows, when the graph has them
 
 
 class MatchFailed(BlenderMatchError):
@@ -66,7 +67,9 @@ def evaluate_maps(graph: MaterialGraph, size: int, seed: int) -> dict[str, torch
 
 def comparison_image(graph: MaterialGraph, maps: dict[str, torch.Tensor], photo: torch.Tensor | None,
                      seed: int, camera: FlashCamera = FlashCamera()) -> torch.Tensor:
-    """One row of COMPARISON_TILE squares: the photo (when given), the render, then every map.
+    """One row of COMPARISON_TILE squares: the photo (when given), the render, then every authored
+    map and the anisotropy level (``COMPARED_MAPS``; the angle, one grey on every graph of ours, is
+    left to its file).
     Beside a photo the render is the graph as the fit saw it: at the photo's size and zoom
     (``calibration.framed_maps``), under ``camera`` (the photo's flash); alone, it is one period
     of ``maps`` (under the ideal flash, the only one a caller without a photo has)."""
@@ -74,7 +77,7 @@ def comparison_image(graph: MaterialGraph, maps: dict[str, torch.Tensor], photo:
         tiles: list[torch.Tensor | None] = [] if photo is None else [photo]
         shown = maps if photo is None else framed_maps(graph, photo.shape[-1], seed)
         tiles.append(render_maps(shown, camera)[:1] if "basecolor" in maps else None)
-        tiles.extend(to_channels(maps[u][:1], 3) for u in AUTHORED_USAGES if u in maps)
+        tiles.extend(to_channels(maps[u][:1], 3) for u in COMPARED_MAPS if u in maps)
         squares = [resize_square(t.float().cpu().clamp(0, 1), COMPARISON_TILE) for t in tiles if t is not None]
         return torch.cat(squares, dim=3)
 

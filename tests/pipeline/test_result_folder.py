@@ -26,6 +26,6 @@ def test_an_anisotropic_graph_writes_its_level_and_angle_as_flat_grey_maps(tmp_p
         assert (data[PNG_DEPTH], data[PNG_COLOR_TYPE]) == (8, GRAY)
     comparison = (tmp_path / "comparison.png").read_bytes()
     width = int.from_bytes(comparison[16:20], "big")
-    assert width == COMPARISON_TILE * (1 + len(AUTHORED_USAGES))  # the render, then the authored maps
+    assert width == COMPARISON_TILE * (2 + len(AUTHORED_USAGES))  # the render, the authored maps, the level
     with pytest.raises(FileWriteError, match="anisotropylevel.png"):
         check_targets(tmp_path, [ANISOTROPY], overwrite=False, extra=())
