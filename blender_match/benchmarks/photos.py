@@ -138,6 +138,14 @@ def name_category(stem: str, known) -> str:
     return next((w for w in words if w in known), words[0])
 
 
+def photo_category(path: Path, families, listed: dict[str, str], labels: dict[str, str]) -> tuple[str, str]:
+    """(category, listed category) of the photo at ``path``: the table's label (``labels``), else
+    its folder's ``SOURCES.tsv`` attribute (``listed``), else a word of its name; the listed
+    category is the same without the label."""
+    listed_category = listed.get(path.name) or name_category(path.stem, families)
+    return labels.get(path.name) or listed_category, listed_category
+
+
 def evaluate(photo: torch.Tensor, options: MatchOptions) -> tuple[dict, torch.Tensor]:
     """Automatic selection and fitting of ``photo`` (1, 3, S, S) as ``match`` without ``--graph``
     does (``pipeline.fit_photo``): the row's measured fields and the kept material's flash render
@@ -261,8 +269,7 @@ def run(device: str = "cpu", photos=None, quick: bool = False, quality: str | No
     rows, entries, listed_misses = [], [], 0
     started = time.perf_counter()
     for index, path in enumerate(paths):
-        listed_category = listed.get(path.name) or name_category(path.stem, families)
-        category = labels.get(path.name) or listed_category
+        category, listed_category = photo_category(path, families, listed, labels)
         row: dict[str, Any] = {c: None for c in COLUMNS} | {"photo": path.name, "category": category, "graph": "",
                                                             "top3": [], "family_match": False, "error": ""}
         photo = render = None

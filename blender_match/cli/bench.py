@@ -10,7 +10,7 @@ import torch
 
 from .match import zoom_argument
 
-SUITES = ("nodes", "translator", "library", "match", "accuracy", "selection", "recovery", "photos")
+SUITES = ("nodes", "translator", "library", "match", "accuracy", "selection", "recovery", "photos", "ranking")
 
 
 def add_parser(sub):
@@ -25,7 +25,9 @@ def add_parser(sub):
     p.add_argument("--quality", help="our preset to compare (match), the preset to use (photos)")
     p.add_argument("--quick", action="store_true",
                    help="a small subset that runs in minutes (accuracy, recovery; photos: the draft preset)")
-    p.add_argument("--photos", type=Path, help="folder of photos to match (photos; default ../shared/data/photos_dev)")
+    p.add_argument("--photos", type=Path,
+                   help="folder of photos to match (photos; default ../shared/data/photos_dev) or rank (ranking; "
+                   "default: photos_dev and the bundled photos)")
     p.add_argument("--iterations", type=int,
                    help="iterations of each fit, rescaling the quality preset (photos, recovery, selection)")
     p.add_argument("--candidates", type=int,
@@ -35,7 +37,7 @@ def add_parser(sub):
     p.add_argument("--no-lighting", dest="lighting", action="store_false", default=None,
                    help="fit under the ideal flash, not the photo's solved falloff (photos, recovery)")
     p.add_argument("--out", type=Path,
-                   help="folder for results.json, results.md and charts (accuracy, recovery, photos)")
+                   help="folder for results.json, results.md and charts (accuracy, recovery, photos, ranking)")
     p.add_argument("--json", action="store_true", help="print rows as JSON")
     p.set_defaults(run=run)
 
