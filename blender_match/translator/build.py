@@ -58,6 +58,15 @@ UNCONNECTED = (0.0, 0.0, 0.0, 0.0)
 # nodes whose "any" inputs need not have the output's channel count
 NOT_VARIANT = {"pixelprocessor", "fxmaps", "shuffle", "passthrough"}
 GRAY = (0.5, 0.5, 0.5, 1.0)
+FLAT_NORMAL = (0.5, 0.5, 1.0, 1.0)  # a tangent-space normal map's "straight up"
+
+
+def stand_in_colour(name: str) -> tuple[float, ...]:
+    """The colour of the uniform that stands in for an unsupported node with nothing to pass
+    through: a flat normal for a node whose name says it makes normals (Substance's
+    ``scratches_generator_normal``, say), since a grey there is a normal lying in the surface
+    (z = 0) that renders a metal black and tilts every normal it is combined with; grey otherwise."""
+    return FLAT_NORMAL if "normal" in name.lower().replace("-", "_").split("_") else GRAY
 
 
 def safe_name(text: str, fallback: str = "node") -> str:
@@ -451,7 +460,7 @@ class Builder:
             want = channels_of(ct)
             if want not in made:
                 if src is None:
-                    made[want] = self.uniform(want, GRAY, origin=name, size=size)
+                    made[want] = self.uniform(want, stand_in_colour(name), origin=name, size=size)
                 elif want is None or src.channels is None or want == src.channels:
                     ir = self.add(IRNode(self.new_name("passthrough"), "passthrough", inputs={"input": src},
                                          origin=name, status="passthrough", size_log2=size))

@@ -128,6 +128,17 @@ def test_unknown_nodes_become_passthrough(tmp_path):
     torch.testing.assert_close(out["basecolor"][0, :, 0, 0], torch.tensor([0.5, 0.5, 0.5, 1.0]))  # gray
 
 
+def test_an_unsupported_normal_generator_stands_in_as_a_flat_normal(tmp_path):
+    nodes = [W.instance_node(30, "pkg:///scratches_generator_normal?dependency=5", outputs=[(31, "output", 1)]),
+             W.instance_node(50, "pkg:///abnormal_grunge?dependency=5", outputs=[(51, "output", 1)]),
+             W.output_node(40, 100, 30, 31), W.output_node(41, 101, 50, 51)]
+    doc = W.package([W.graph("N", nodes, outputs=[(100, "normal", "normal"), (101, "c", "baseColor")])],
+                    dependencies=[(5, "sbs://scratches.sbs")])
+    out = translate(_write(tmp_path, doc)).graph(size=8)
+    torch.testing.assert_close(out["normal"][0, :, 0, 0], torch.tensor([0.5, 0.5, 1.0, 1.0]))  # straight up
+    torch.testing.assert_close(out["basecolor"][0, :, 0, 0], torch.tensor([0.5, 0.5, 0.5, 1.0]))  # "abnormal": grey
+
+
 def _sub_graph():
     """A sub-graph: uniform of colour `tint` blended (copy) over nothing -> output."""
     color = W.dyn_param("outputcolor", 1, [W.fnode(1, "get_float4", data=("constantValueString", "tint"),
