@@ -110,6 +110,16 @@ def test_edge_detect_finds_square_contour():
     torch.testing.assert_close(inv, 1 - out)
 
 
+def test_edge_detect_draws_a_full_line_for_a_small_step():
+    """As Substance does: tiles of random grey get lines as white as a black and white mask."""
+    full = F.edge_detect(square(), edge_width=2.0, edge_roundness=0.0)
+    faint = F.edge_detect(square() * 0.15 + 0.3, edge_width=2.0, edge_roundness=0.0)
+    torch.testing.assert_close(faint, full, atol=0.05, rtol=0)
+    assert faint[0, 0, 16, 8] > 0.9
+    below = F.edge_detect(square() * 0.15 + 0.3, edge_width=2.0, edge_roundness=0.0, tolerance=0.2)
+    assert float(below.max()) < 0.01  # a step under the tolerance is no edge
+
+
 def test_bevel_ramps_inwards_and_outwards():
     size = 64
     x = square(size, 16, 48)

@@ -272,32 +272,36 @@ def ambient_occlusion(source: torch.Tensor, *, height_depth=0.15, spreading=0.15
     return (x ** gamma).clamp(0.0, 1.0)
 
 
+EDGE_GATE = (0.02, 0.05)  # steps this far above the tolerance start to draw a line, and draw a full one
+
+
 def edge_detect(input: torch.Tensor, *, edge_width=2.0, edge_roundness=4.0, tolerance=0.0,
                 invert: bool = False):
-    """Edge Detect: white lines along the contours of a (mostly two-tone) image.
+    """Edge Detect: white lines along the contours of an image, as full a line for a small step
+    across a contour as for a large one.
 
-    The gradient magnitude (central differences) of the image blurred by sigma = ``edge_width`` / 2
-    (256-px pixels), normalised so a unit step peaks at about 1, minus ``tolerance``, gained x 2
-    and rounded by a blur of ``edge_roundness`` / 2 pixels; ``invert`` gives black lines on white."""
+    Substance draws a line wherever the luminance steps by more than ``tolerance`` (the MATch
+    reference: a thresholded difference between the image and its 1-px blur), so tiles or cells
+    of random grey get lines as white as a black and white mask does. Here: the gradient magnitude
+    (central differences) of the image blurred by sigma = ``edge_width`` / 2 (256-px pixels),
+    normalised so that a step peaks at its height, is divided by its local peak (the largest
+    value within two sigmas), which gives every contour the profile of a unit step; contours whose
+    step is under ``tolerance`` are gated out (``EDGE_GATE``: from a step 0.02 above it, full at
+    0.05, clear of the blur's numerical noise); the profile is
+    gained x 2 and rounded by a blur of ``edge_roundness`` / 2 pixels; ``invert`` gives black lines
+    on white."""
     x = to_gray(input)
     size = x.shape[-1]
     sigma = torch.sqrt((param4d(edge_width, x) * 0.5 * PX) ** 2 + (0.5 / size) ** 2)
     gu, gv = gradient_wrap(gaussian_blur(x, sigma))
-    tol = param4d(tolerance, x)
-    if (not torch.is_grad_enabled() or not (x.requires_grad or sigma.requires_grad or tol.requires_grad)) \
-            and max(sigma.shape[0], tol.shape[0]) <= gu.shape[0]:
-        # no-grad twin: the same arithmetic on in-place buffers (docs/engine.md, "No-grad twins")
-        with torch.no_grad():
-            e = (gu * gu).add_(gv * gv).add_(1e-12).sqrt_()
-            del gu, gv
-            e.mul_(torch.sqrt(sigma ** 2 + (1.0 / size) ** 2)).mul_(math.sqrt(2 * math.pi))
-            e.sub_(tol).div_((1 - tol).clamp_min(1e-3)).mul_(2.0).clamp_(0.0, 1.0)
-            out = gaussian_blur(e, param4d(edge_roundness, x).abs() * 0.5 * PX).clamp_(0.0, 1.0)
-            return out.neg_().add_(1.0) if check_bool(invert, "edge_detect.invert") else out
     # a unit step blurred by sigma peaks at 1 / (sigma sqrt(2 pi)); central differences widen it
     e = torch.sqrt(gu * gu + gv * gv + 1e-12) * torch.sqrt(sigma ** 2 + (1.0 / size) ** 2) * math.sqrt(2 * math.pi)
+    reach = 2 * math.ceil(2 * float(sigma.detach().max()) * size) + 1
+    padded = torch.nn.functional.pad(e, (reach // 2,) * 4, mode="circular")
+    peak = torch.nn.functional.max_pool2d(padded, reach, stride=1)
     tol = param4d(tolerance, x)
-    out = ((e - tol) / (1 - tol).clamp_min(1e-3) * 2.0).clamp(0.0, 1.0)
+    gate = ((peak - tol - EDGE_GATE[0]) / (EDGE_GATE[1] - EDGE_GATE[0])).clamp(0.0, 1.0)
+    out = (e / (peak + 1e-6) * gate * 2.0).clamp(0.0, 1.0)
     out = gaussian_blur(out, param4d(edge_roundness, x).abs() * 0.5 * PX).clamp(0.0, 1.0)
     return 1.0 - out if check_bool(invert, "edge_detect.invert") else out
 
