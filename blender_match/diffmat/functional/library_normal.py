@@ -296,9 +296,13 @@ def edge_detect(input: torch.Tensor, *, edge_width=2.0, edge_roundness=4.0, tole
     gu, gv = gradient_wrap(gaussian_blur(x, sigma))
     # a unit step blurred by sigma peaks at 1 / (sigma sqrt(2 pi)); central differences widen it
     e = torch.sqrt(gu * gu + gv * gv + 1e-12) * torch.sqrt(sigma ** 2 + (1.0 / size) ** 2) * math.sqrt(2 * math.pi)
+    # the largest value within two sigmas, wrapping: a square max is a row max of a column max
     reach = 2 * math.ceil(2 * float(sigma.detach().max()) * size) + 1
-    padded = torch.nn.functional.pad(e, (reach // 2,) * 4, mode="circular")
-    peak = torch.nn.functional.max_pool2d(padded, reach, stride=1)
+    half = reach // 2
+    peak = torch.nn.functional.max_pool2d(torch.nn.functional.pad(e, (half, half, 0, 0), mode="circular"),
+                                          (1, reach), stride=1)
+    peak = torch.nn.functional.max_pool2d(torch.nn.functional.pad(peak, (0, 0, half, half), mode="circular"),
+                                          (reach, 1), stride=1)
     tol = param4d(tolerance, x)
     gate = ((peak - tol - EDGE_GATE[0]) / (EDGE_GATE[1] - EDGE_GATE[0])).clamp(0.0, 1.0)
     out = (e / (peak + 1e-6) * gate * 2.0).clamp(0.0, 1.0)
