@@ -30,6 +30,7 @@ from ..photo import load_photo
 from ..pipeline import PHOTO_SIZE, resolve_device
 from ..safe_files import write_atomic
 from ..selection import rank_graphs, shared_vgg
+from .accuracy_targets import photos_dir
 from .markdown import table
 from .photos import (
     SEED,
@@ -64,7 +65,7 @@ def summarise(rows: list[dict], seconds: float) -> dict:
 def run(device: str = "cpu", photos=None, out: Path | None = None, **_ignored) -> list[dict]:
     """Rank the library for every photo (module docstring): the per-photo rows then the "all"
     row; [] with one line on stderr when no folder holds a photo."""
-    folders = [Path(photos)] if photos is not None else [default_photos(), default_photos().parent / "photos"]
+    folders = [Path(photos)] if photos is not None else [default_photos(), photos_dir()]
     paths = [p for folder in folders for p in find_photos(folder)]
     if not paths:
         print(f"bench ranking: no photos (*.jpg, *.jpeg, *.png) in {', '.join(map(str, folders))}: nothing to "
@@ -78,8 +79,8 @@ def run(device: str = "cpu", photos=None, out: Path | None = None, **_ignored) -
     started = time.perf_counter()
     for index, path in enumerate(paths):
         category, _ = photo_category(path, families, listed[path.parent], labels)
-        row: dict[str, Any] = {"photo": path.name, "category": category, "first": "", "top3": [], "family_rank": None,
-               "seconds": None, "error": "", "ranking": []}
+        row: dict[str, Any] = {"photo": path.name, "category": category, "first": "", "top3": [],
+                               "family_rank": None, "seconds": None, "error": "", "ranking": []}
         try:
             begun = time.perf_counter()
             ranking = rank_graphs(load_photo(path, PHOTO_SIZE).to(torch_device), "both", seed=SEED,
