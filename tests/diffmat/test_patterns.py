@@ -9,6 +9,7 @@ import torch
 
 from blender_match.diffmat import DiffMatError, EvalContext, Node
 from blender_match.diffmat import functional as F
+from blender_match.diffmat.functional.pattern_shapes import tile_supersampling
 
 S = 64
 
@@ -51,6 +52,18 @@ def test_tile_generator_brick_offset_shifts_alternate_rows():
         else:
             torch.testing.assert_close(off[band], torch.roll(base[band], cell // 2, dims=-1))
     assert not torch.allclose(off, base)
+
+
+@pytest.mark.parametrize("pattern", [2, 7, 8, 10])  # disc, pyramid, brick, waves
+def test_tile_generator_small_tiles_are_the_large_render_box_filtered(pattern):
+    # 64 tiles at 256 px are 4 px wide: sampled at pixel centres, a Brick's bevel was missed and
+    # the whole image came out a constant 1.0; drawn supersampled it is the 1024-px render averaged
+    kw = dict(x_amount=64, y_amount=64, pattern=pattern, pattern_specific=0.34)
+    small = _render("tile_generator", size=256, **kw)
+    large = torch.nn.functional.avg_pool2d(_render("tile_generator", size=1024, **kw), 4)
+    assert small.std().item() > 0.05
+    assert (small - large).abs().mean().item() < 0.03
+    assert tile_supersampling(256, 64, 64) == 2 and tile_supersampling(512, 64, 64) == 1
 
 
 def test_tile_generator_randomness_is_seeded_and_per_tile():

@@ -23,6 +23,7 @@ from dataclasses import dataclass
 from typing import Callable
 
 import torch
+import torch.nn.functional as F
 
 from ..errors import DiffMatError
 from .common import lerp, param4d, pixel_grid
@@ -334,6 +335,26 @@ def _keep_highest(best, color, h, vals):
     return torch.maximum(best, h), color
 
 
+# the fewest pixels across a cell at which ``tile_field`` samples its shapes directly; smaller cells
+# are drawn supersampled and box-filtered down (``tile_supersampling``)
+MIN_CELL_PIXELS = 8
+# supersampling never draws more than this many pixels across (memory: at 2048 px every cell of up
+# to 256 per row already has 8 pixels)
+MAX_SUPERSAMPLED_SIZE = 2048
+
+
+def tile_supersampling(size: int, nx: int, ny: int) -> int:
+    """The factor (a power of 2, 1 when none) by which ``tile_field`` draws a ``size``-px grid of
+    ``nx`` × ``ny`` cells before box-filtering it down. A shape's profile is point-sampled at
+    pixel centres; with a few pixels a cell, those centres miss its bevels and gaps (a Brick of
+    64 cells at 256 px sampled as a constant 1.0), so the small render would not be the
+    box-downsampled large one, as every generator's must be."""
+    k = 1
+    while size * k < MIN_CELL_PIXELS * max(nx, ny) and size * k * 2 <= MAX_SUPERSAMPLED_SIZE:
+        k *= 2
+    return k
+
+
 def tile_field(size: int, nx: int, ny: int, *, seed: int, profile: Callable, scale=1.0, size_xy=(1.0, 1.0),
                interstice=(0.0, 0.0), offset=0.0, position_random=0.0, scale_random=0.0, rotation=0.0,
                rotation_random=0.0, luminance_random=0.0, mask_random=0.0, pattern_specific=0.5,
@@ -358,7 +379,12 @@ def tile_field(size: int, nx: int, ny: int, *, seed: int, profile: Callable, sca
     rotation, mask or pattern-specific randomness, quarter-turn rotation), a neighbour's shape is
     never higher than the pixel's own shape, and only the own cell is evaluated (the neighbours'
     soft edges spilling over the border differ from the own one's by their luminance only).
+
+    Cells of fewer than ``MIN_CELL_PIXELS`` pixels are drawn at a multiple of ``size`` and
+    box-filtered down (``tile_supersampling``).
     """
+    k = tile_supersampling(size, nx, ny)
+    size = size * k
     ref = ref_tensor(device, dtype)
     ucoord = _pixel_axis(size, device, dtype)
     rnd = lattice_random(seed, N_RND, nx * ny, device, dtype)
@@ -426,7 +452,16 @@ def tile_field(size: int, nx: int, ny: int, *, seed: int, profile: Callable, sca
                 h = h.expand(-1, -1, size, size)
             best, color = _keep_highest(best, color, h, vals if cr is not None else None)
     assert best is not None  # the windows mx, my are at least 1
-    return best.clamp(0.0, 1.0), color
+    best = best.clamp(0.0, 1.0)
+    if k > 1:
+        # the colour is averaged weighted by the height, so that colour × height (what a caller
+        # draws) is exactly the box filter of the supersampled one, whatever the colour under h = 0
+        if color is not None:
+            color = F.avg_pool2d(color * best, k)
+        best = F.avg_pool2d(best, k)
+        if color is not None:
+            color = color / best.clamp_min(1e-6)
+    return best, color
 
 
 # ----------------------------------------------------------------------------------------------
