@@ -25,7 +25,7 @@ def choose_start(graph, name: str | None, loss: TargetLoss, schedule: Schedule, 
         return None, "default"
     proposals.insert(0, ("default", graph.get_vector()))
     first = schedule.stages[0]
-    thetas = torch.stack([t for _, t in proposals]).to(device)
+    thetas = torch.stack([t.to(device) for _, t in proposals])
     with torch.no_grad():
         losses = loss(graph, thetas, first.size, first.scales, seed).cpu()
     best = best_finite(losses)
