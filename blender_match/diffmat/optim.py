@@ -7,14 +7,16 @@ the parameters are clamped to [0, 1] after every step, as in the paper.
 The paper's optimiser renders at 512 px and describes at 512/256/128 every iteration with a fixed
 learning rate of 5e-4 (``PAPER_SCHEDULE``). Ours (``QUALITY_SCHEDULES``) reaches the same loss
 sooner by
-- describing coarse to fine: most iterations describe the render at 128 px only, then a few at 256
-  and 128 (and 512 for ``best``). Every stage still *renders* at the photo's size (512 px): a
-  graph rendered at 128 px is not the photo shrunk to 128, because the flash shading of fine
-  relief does not average linearly (a height map's fine detail tilts the normals only at the
-  resolution that holds it, so most library graphs render brighter at 128 than at 512 shrunk to
-  128). A fit whose early stages rendered at 128 px darkened the material to compensate and lost
-  its fine grain, and came out too dark at the size the maps are written. VGG19 costs more than
-  the graph, so describing small keeps most of the speed (figures: docs/matching.md);
+- describing small: ``draft`` describes the render at 128 px only, ``balanced`` and ``best`` at
+  256 and 128 (at 128 alone the finest grain, 2 to 4 pixels at 512, is invisible to the
+  descriptor and drifts freely), ``best`` ending with a few steps at 512. Every stage still
+  *renders* at the photo's size (512 px): a graph rendered at 128 px is not the photo shrunk to
+  128, because the flash shading of fine relief does not average linearly (a height map's fine
+  detail tilts the normals only at the resolution that holds it, so most library graphs render
+  brighter at 128 than at 512 shrunk to 128). A fit whose early stages rendered at 128 px
+  darkened the material to compensate and lost its fine grain, and came out too dark at the size
+  the maps are written. VGG19 costs more than the graph, so describing small keeps most of the
+  speed (figures: docs/matching.md);
 - larger learning rates with a cosine decay inside each stage;
 - early stopping on a plateau (no relative improvement of the best loss for ``patience``
   iterations ends the stage);
@@ -89,10 +91,9 @@ PAPER_SCHEDULE = Schedule("paper", (Stage(512, (512, 256, 128), 2000, 5e-4, fina
 # quality added or renamed in one place and not the other fails here, at import.
 _PRESETS = {schedule.name: schedule for schedule in (
     Schedule("draft", (Stage(512, (128,), 48, 0.02, warmup=5),), patience=15),
-    Schedule("balanced", (Stage(512, (128,), 120, 0.02, warmup=5),
-                          Stage(512, (256, 128), 30, 0.008)), patience=25),
-    Schedule("best", (Stage(512, (128,), 200, 0.02, warmup=5), Stage(512, (256, 128), 80, 0.008),
-                      Stage(512, (512, 256, 128), 30, 0.003)), patience=40),
+    Schedule("balanced", (Stage(512, (256, 128), 90, 0.02, warmup=5),), patience=25),
+    Schedule("best", (Stage(512, (256, 128), 160, 0.02, warmup=5), Stage(512, (512, 256, 128), 20, 0.003)),
+             patience=40),
 )}
 if set(_PRESETS) != set(QUALITY_NAMES):
     raise RuntimeError(f"optimiser schedules {sorted(_PRESETS)} do not match the vocabulary's qualities "
