@@ -454,13 +454,12 @@ def tile_field(size: int, nx: int, ny: int, *, seed: int, profile: Callable, sca
     assert best is not None  # the windows mx, my are at least 1
     best = best.clamp(0.0, 1.0)
     if k > 1:
-        # the colour is averaged weighted by the height, so that colour × height (what a caller
-        # draws) is exactly the box filter of the supersampled one, whatever the colour under h = 0
+        pooled = F.avg_pool2d(best, k)
         if color is not None:
-            color = F.avg_pool2d(color * best, k)
-        best = F.avg_pool2d(best, k)
-        if color is not None:
-            color = color / best.clamp_min(1e-6)
+            # averaged weighted by the height, so that colour × height (what a caller draws) is
+            # exactly the box filter of the supersampled one, whatever the colour under h = 0
+            color = F.avg_pool2d(color * best, k) / pooled.clamp_min(1e-6)
+        best = pooled
     return best, color
 
 
