@@ -7,10 +7,11 @@ the parameters are clamped to [0, 1] after every step, as in the paper.
 The paper's optimiser renders at 512 px and describes at 512/256/128 every iteration with a fixed
 learning rate of 5e-4 (``PAPER_SCHEDULE``). Ours (``QUALITY_SCHEDULES``) reaches the same loss
 sooner by
-- describing small: ``draft`` describes the render at 128 px only, ``balanced`` and ``best`` at
-  256 and 128 (at 128 alone the finest grain, 2 to 4 pixels at 512, is invisible to the
-  descriptor and drifts freely), ``best`` ending with a few steps at 512. Every stage still
-  *renders* at the photo's size (512 px): a graph rendered at 128 px is not the photo shrunk to
+- describing small: ``draft`` describes the render at 128 px and a 128-px window of it at full
+  resolution (``TargetLoss``'s crop), ``balanced`` and ``best`` at 256 and 128 (at 128 alone the
+  finest grain, 2 to 4 pixels at 512, is invisible to the descriptor and drifts freely), ``best``
+  ending with a few steps at 512. Every stage still *renders* at the photo's size (512 px): a
+  graph rendered at 128 px is not the photo shrunk to
   128, because the flash shading of fine relief does not average linearly (a height map's fine
   detail tilts the normals only at the resolution that holds it, so most library graphs render
   brighter at 128 than at 512 shrunk to 128). A fit whose early stages rendered at 128 px
@@ -45,10 +46,11 @@ from .render import FlashCamera, render_maps
 
 @dataclass(frozen=True)
 class Stage:
-    """``iterations`` Adam steps rendering at ``size`` px, describing at ``scales``, learning rate
-    ``lr`` reached by a linear warm-up over ``warmup`` steps (Adam's first steps move every
-    parameter by about ``lr`` whatever its gradient, which throws a good start away), then decayed
-    by a cosine to ``lr * final_lr_ratio``."""
+    """``iterations`` Adam steps rendering at ``size`` px, describing at ``scales`` (and, with
+    ``crop``, a ``crop`` x ``crop`` window of the render at full resolution: see ``TargetLoss``),
+    learning rate ``lr`` reached by a linear warm-up over ``warmup`` steps (Adam's first steps
+    move every parameter by about ``lr`` whatever its gradient, which throws a good start away),
+    then decayed by a cosine to ``lr * final_lr_ratio``."""
 
     size: int
     scales: tuple[int, ...]
@@ -56,6 +58,7 @@ class Stage:
     lr: float
     final_lr_ratio: float = 0.1
     warmup: int = 0
+    crop: int | None = None
 
 
 @dataclass(frozen=True)
@@ -90,7 +93,7 @@ PAPER_SCHEDULE = Schedule("paper", (Stage(512, (512, 256, 128), 2000, 5e-4, fina
 # One schedule per quality of the vocabulary (``QUALITY_NAMES``), keyed and ordered as it is: a
 # quality added or renamed in one place and not the other fails here, at import.
 _PRESETS = {schedule.name: schedule for schedule in (
-    Schedule("draft", (Stage(512, (128,), 48, 0.02, warmup=5),), patience=15),
+    Schedule("draft", (Stage(512, (128,), 48, 0.02, warmup=5, crop=128),), patience=15),
     Schedule("balanced", (Stage(512, (256, 128), 90, 0.02, warmup=5),), patience=25),
     Schedule("best", (Stage(512, (256, 128), 160, 0.02, warmup=5), Stage(512, (512, 256, 128), 20, 0.003)),
              patience=40),
@@ -113,8 +116,28 @@ def resize_square(image: torch.Tensor, size: int) -> torch.Tensor:
     return F.interpolate(image, size=(size, size), mode="bilinear", antialias=True, align_corners=False)
 
 
+def quarter_crop(image: torch.Tensor, size: int) -> torch.Tensor:
+    """The ``size`` x ``size`` pixels of an (N, C, S, S) image around the point a quarter of its
+    width in from its left and top edges (all of it when S <= size; kept inside the image)."""
+    side = image.shape[-1]
+    if side <= size:
+        return image
+    start = min(max(0, side // 4 - size // 2), side - size)
+    return image[..., start:start + size, start:start + size]
+
+
 class TargetLoss:
-    """The descriptor loss against one photo, with the photo's descriptor cached per scale set."""
+    """The descriptor loss against one photo, with the photo's descriptor cached per scale set.
+
+    ``crop`` adds to the descriptor at ``scales`` that of a ``crop`` x ``crop`` window of the render
+    and of the photo (resized to the render's size) at full resolution: described whole at 128 px,
+    a 512-px image's grain of a few pixels and a leather's cells of 10 to 15 are averaged away, and
+    the fit trades them for any texture of the same colour and contrast; the window shows them at
+    their own size for the cost of one more 128-px description. The window (``quarter_crop``) is
+    off the centre, where a flash photo's highlight sits: a centre window on a glossy photo
+    describes the highlight's shape, not the grain. The photo's falloff lies in the window of both
+    images alike (the render is under the photo's solved flash).
+    """
 
     def __init__(self, photo: torch.Tensor, descriptor: TextureDescriptor, camera: FlashCamera = FlashCamera()):
         if photo.dim() != 4 or photo.shape[:2] != (1, 3):
@@ -124,29 +147,44 @@ class TargetLoss:
         self.camera = camera
         self._targets: dict[tuple, torch.Tensor] = {}
 
-    def target(self, scales: tuple[int, ...]) -> torch.Tensor:
-        if scales not in self._targets:
+    def target(self, scales: tuple[int, ...], crop: int | None = None, size: int | None = None) -> torch.Tensor:
+        """The photo's descriptor at ``scales`` (and its ``crop`` window at the render's ``size``)."""
+        key = (scales, crop, size if crop else None)
+        if key not in self._targets:
             with torch.no_grad():
-                image = resize_square(self.photo, max(scales))
-                self._targets[scales] = self.descriptor(image.to(self._device()), scales)
-        return self._targets[scales]
+                photo = self.photo.to(self._device())
+                full = resize_square(photo, size) if crop and size else photo
+                self._targets[key] = self._describe(resize_square(photo, max(scales)), scales, crop, full)
+        return self._targets[key]
+
+    def _describe(self, image: torch.Tensor, scales: tuple[int, ...], crop: int | None,
+                  full: torch.Tensor) -> torch.Tensor:
+        described = self.descriptor(image, scales)
+        if crop is None:
+            return described
+        window = quarter_crop(full, crop)
+        return torch.cat([described, self.descriptor(window, (window.shape[-1],))], dim=1)
 
     def _device(self):
         return next(self.descriptor.parameters()).device
 
-    def __call__(self, graph, theta: torch.Tensor, size: int, scales: tuple[int, ...], seed: int = 0):
+    def __call__(self, graph, theta: torch.Tensor, size: int, scales: tuple[int, ...], seed: int = 0,
+                 crop: int | None = None):
         """Loss of each parameter vector in ``theta`` (B, P) rendered at ``size`` (at most the photo's
-        own size; ``scales`` are capped the same way) and framed at the graph's zoom
-        (``calibration.framed_maps``): a (B,) tensor."""
+        own size; ``scales`` and ``crop`` are capped the same way) and framed at the graph's zoom
+        (``calibration.framed_maps``), described at ``scales`` and, when given, a ``crop`` x ``crop``
+        window at full resolution: a (B,) tensor."""
         side = self.photo.shape[-1]
         if size > side:
             size = side
             scales = tuple(dict.fromkeys(min(s, side) for s in scales))
+        if crop is not None:
+            crop = min(crop, size)
         maps = framed_maps(graph, size, seed, theta)
         image = render_maps(maps, self.camera)
         if image.shape[0] != theta.shape[0]:
             image = image.expand(theta.shape[0], -1, -1, -1)
-        return style_loss(self.descriptor(image, scales), self.target(scales))
+        return style_loss(self._describe(image, scales, crop, image), self.target(scales, crop, size))
 
 
 @dataclass
@@ -168,7 +206,7 @@ class FitResult:
 
 def _stage_cost(stage: Stage) -> float:
     """Relative cost of one iteration of a stage (pixels rendered and described)."""
-    return stage.size ** 2 + sum(s * s for s in stage.scales)
+    return stage.size ** 2 + sum(s * s for s in stage.scales) + (stage.crop or 0) ** 2
 
 
 def _learning_rate(stage: Stage, it: int) -> float:
@@ -215,7 +253,7 @@ def fit(graph, loss: TargetLoss, schedule: Schedule, *, seed: int = 0, theta0: t
     last = schedule.stages[-1]
     t_start = time.perf_counter()
     with torch.no_grad():
-        loss_initial = float(loss(graph, best[None], last.size, last.scales, seed)[0])
+        loss_initial = float(loss(graph, best[None], last.size, last.scales, seed, last.crop)[0])
     if not math.isfinite(loss_initial):
         raise DiffMatError(f"graph {graph.name}: the loss at the start is not finite")
     result = FitResult(theta=best, loss_initial=loss_initial, loss_final=loss_initial, iterations=0, seconds=0.0)
@@ -234,7 +272,7 @@ def fit(graph, loss: TargetLoss, schedule: Schedule, *, seed: int = 0, theta0: t
             for group in optimizer.param_groups:
                 group["lr"] = _learning_rate(stage, it)
             optimizer.zero_grad(set_to_none=True)
-            value = loss(graph, theta, stage.size, stage.scales, seed)[0]
+            value = loss(graph, theta, stage.size, stage.scales, seed, stage.crop)[0]
             current = float(value.detach())
             if math.isfinite(current) and current < stage_best:  # the point before this step
                 stage_best, best = current, theta.detach()[0].clone()

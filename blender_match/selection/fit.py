@@ -85,7 +85,8 @@ def probe_schedule(schedule: Schedule, iterations: int) -> Schedule:
     """The schedule's first stage alone, for ``iterations``: the probe round."""
     first = schedule.stages[0]
     return Schedule(f"{schedule.name}-probe", (Stage(first.size, first.scales, iterations, first.lr,
-                                                     first.final_lr_ratio),), None, schedule.min_improvement)
+                                                     first.final_lr_ratio, crop=first.crop),),
+                    None, schedule.min_improvement)
 
 
 def frame_start(graph, loss: TargetLoss, theta: torch.Tensor, schedule: Schedule, seed: int = 0,
@@ -148,7 +149,7 @@ def select_and_fit(loss: TargetLoss, ranking: list[dict], k: int, schedule: Sche
         last = sched.stages[-1]
         f.rounds.append({"schedule": sched.name, "iterations": result.iterations,
                          "loss_final": round(result.loss_final, 6),
-                         "measured_at": {"size": last.size, "scales": list(last.scales)}})
+                         "measured_at": {"size": last.size, "scales": list(last.scales), "crop": last.crop}})
 
     def judged(i: int) -> float:
         return fits[i].fitted.loss_final * (1 + RANK_MARGIN) ** i

@@ -27,7 +27,7 @@ def choose_start(graph, name: str | None, loss: TargetLoss, schedule: Schedule, 
     first = schedule.stages[0]
     thetas = torch.stack([t.to(device) for _, t in proposals])
     with torch.no_grad():
-        losses = loss(graph, thetas, first.size, first.scales, seed).cpu()
+        losses = loss(graph, thetas, first.size, first.scales, seed, first.crop).cpu()
     best = best_finite(losses)
     if best == 0:
         return None, "default"

@@ -11,7 +11,15 @@ import torch
 from blender_match.diffmat import MaterialGraph
 from blender_match.diffmat.descriptor import TextureDescriptor
 from blender_match.diffmat.errors import DiffMatError
-from blender_match.diffmat.optim import PAPER_SCHEDULE, QUALITY_SCHEDULES, Schedule, Stage, TargetLoss, fit
+from blender_match.diffmat.optim import (
+    PAPER_SCHEDULE,
+    QUALITY_SCHEDULES,
+    Schedule,
+    Stage,
+    TargetLoss,
+    fit,
+    quarter_crop,
+)
 from blender_match.diffmat.render import render_maps
 from blender_match.errors import Cancelled
 
@@ -143,6 +151,42 @@ def test_every_preset_renders_at_the_photo_size():
     from blender_match.pipeline import PHOTO_SIZE
 
     assert {s.size for schedule in QUALITY_SCHEDULES.values() for s in schedule.stages} == {PHOTO_SIZE}
+
+
+def test_every_preset_ends_describing_the_grain_at_its_own_size():
+    """The last stage of every preset sees a grain of a few pixels at the render's size: described
+    at half that size or more, or with a full-resolution crop (draft)."""
+    for schedule in QUALITY_SCHEDULES.values():
+        last = schedule.stages[-1]
+        assert last.crop is not None or 2 * max(last.scales) >= last.size, schedule.name
+
+
+def test_a_crop_shows_the_grain_that_a_small_description_averages_away(descriptor):
+    """A one-pixel checker over a flat grey: described whole at a quarter of its size it is the
+    flat grey, a crop of it at full resolution is not."""
+    graph = MaterialGraph("flat")
+    graph.add("grey", "uniform", outputcolor=(0.5, 0.5, 0.5, 1.0))
+    graph.set_output("basecolor", "grey")
+    theta = graph.get_vector()[None]
+    with torch.no_grad():
+        flat = render_maps(graph(size=128, seed=0))
+        rows, cols = torch.meshgrid(torch.arange(128), torch.arange(128), indexing="ij")
+        checker = ((rows + cols) % 2 * 2 - 1).float()
+        loss = TargetLoss((flat * (1 + 0.5 * checker)).clamp(0, 1), TextureDescriptor(scales=(32,), vgg=descriptor.vgg))
+        whole = float(loss(graph, theta, 128, (32,))[0])
+        cropped = float(loss(graph, theta, 128, (32,), crop=32)[0])
+        itself = TargetLoss(flat, TextureDescriptor(scales=(32,), vgg=descriptor.vgg))
+        assert float(itself(graph, theta, 128, (32,), crop=32)[0]) < 1e-6
+    assert cropped > 100 * whole
+
+
+def test_the_crop_window_is_off_the_highlight_and_inside_the_image():
+    """A flash photo's highlight sits at its centre: the window is centred a quarter in."""
+    image = torch.arange(512 * 512, dtype=torch.float32).reshape(1, 1, 512, 512)
+    window = quarter_crop(image, 128)
+    assert window.shape[-2:] == (128, 128) and window[0, 0, 0, 0] == image[0, 0, 64, 64]
+    assert quarter_crop(image, 384)[0, 0, 0, 0] == image[0, 0, 0, 0]
+    assert quarter_crop(image[..., :64, :64], 128).shape[-1] == 64
 
 
 def test_a_render_is_never_larger_than_the_photo(descriptor):
