@@ -7,10 +7,10 @@ the parameters are clamped to [0, 1] after every step, as in the paper.
 The paper's optimiser renders at 512 px and describes at 512/256/128 every iteration with a fixed
 learning rate of 5e-4 (``PAPER_SCHEDULE``). Ours (``QUALITY_SCHEDULES``) reaches the same loss
 sooner by
-- describing small: ``draft`` describes the render at 128 px and a 128-px window of it at full
-  resolution (``TargetLoss``'s crop), ``balanced`` and ``best`` at 256 and 128 (at 128 alone the
-  finest grain, 2 to 4 pixels at 512, is invisible to the descriptor and drifts freely), ``best``
-  ending with a few steps at 512. Every stage still *renders* at the photo's size (512 px): a
+- describing small: ``draft`` describes the render at 128 px, ``balanced`` and ``best`` at 256
+  and 128 (at 128 alone the finest grain, 2 to 4 pixels at 512, is invisible to the descriptor and
+  drifts freely), each with a 128-px window of it at full resolution (``TargetLoss``'s crop), and
+  ``best`` ends with a few steps at 512. Every stage still *renders* at the photo's size (512 px): a
   graph rendered at 128 px is not the photo shrunk to
   128, because the flash shading of fine relief does not average linearly (a height map's fine
   detail tilts the normals only at the resolution that holds it, so most library graphs render
@@ -94,8 +94,8 @@ PAPER_SCHEDULE = Schedule("paper", (Stage(512, (512, 256, 128), 2000, 5e-4, fina
 # quality added or renamed in one place and not the other fails here, at import.
 _PRESETS = {schedule.name: schedule for schedule in (
     Schedule("draft", (Stage(512, (128,), 48, 0.02, warmup=5, crop=128),), patience=15),
-    Schedule("balanced", (Stage(512, (256, 128), 90, 0.02, warmup=5),), patience=25),
-    Schedule("best", (Stage(512, (256, 128), 160, 0.02, warmup=5), Stage(512, (512, 256, 128), 20, 0.003)),
+    Schedule("balanced", (Stage(512, (256, 128), 90, 0.02, warmup=5, crop=128),), patience=25),
+    Schedule("best", (Stage(512, (256, 128), 160, 0.02, warmup=5, crop=128), Stage(512, (512, 256, 128), 20, 0.003)),
              patience=40),
 )}
 if set(_PRESETS) != set(QUALITY_NAMES):
