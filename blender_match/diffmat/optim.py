@@ -12,9 +12,9 @@ sooner by
   drifts freely), each with a 128-px window of it at full resolution (``TargetLoss``'s crop), and
   ``best`` ends with a few steps at 512. Every stage still *renders* at the photo's size (512 px): a
   graph rendered at 128 px is not the photo shrunk to 128, because the flash shading of fine
-  relief does not average linearly (a height map's fine
-  detail tilts the normals only at the resolution that holds it, so most library graphs render
-  brighter at 128 than at 512 shrunk to 128). A fit whose early stages rendered at 128 px
+  relief does not average linearly (a height map's fine detail tilts the normals only at the
+  resolution that holds it, so most library graphs render brighter at 128 than at 512 shrunk to
+  128). A fit whose early stages rendered at 128 px
   darkened the material to compensate and lost its fine grain, and came out too dark at the size
   the maps are written. VGG19 costs more than the graph, so describing small keeps most of the
   speed (figures: docs/matching.md);
