@@ -14,10 +14,9 @@ sooner by
   graph rendered at 128 px is not the photo shrunk to 128, because the flash shading of fine
   relief does not average linearly (a height map's fine detail tilts the normals only at the
   resolution that holds it, so most library graphs render brighter at 128 than at 512 shrunk to
-  128). A fit whose early stages rendered at 128 px
-  darkened the material to compensate and lost its fine grain, and came out too dark at the size
-  the maps are written. VGG19 costs more than the graph, so describing small keeps most of the
-  speed (figures: docs/matching.md);
+  128). A fit whose early stages rendered at 128 px darkened the material to compensate and lost
+  its fine grain, and came out too dark at the size the maps are written. VGG19 costs more than
+  the graph, so describing small keeps most of the speed (figures: docs/matching.md);
 - larger learning rates with a cosine decay inside each stage;
 - early stopping on a plateau (no relative improvement of the best loss for ``patience``
   iterations ends the stage);
@@ -171,15 +170,13 @@ class TargetLoss:
     def __call__(self, graph, theta: torch.Tensor, size: int, scales: tuple[int, ...], seed: int = 0,
                  crop: int | None = None):
         """Loss of each parameter vector in ``theta`` (B, P) rendered at ``size`` (at most the photo's
-        own size; ``scales`` and ``crop`` are capped the same way) and framed at the graph's zoom
+        own size; ``scales`` are capped the same way) and framed at the graph's zoom
         (``calibration.framed_maps``), described at ``scales`` and, when given, a ``crop`` x ``crop``
-        window at full resolution: a (B,) tensor."""
+        window at full resolution (the whole render when it is no larger): a (B,) tensor."""
         side = self.photo.shape[-1]
         if size > side:
             size = side
             scales = tuple(dict.fromkeys(min(s, side) for s in scales))
-        if crop is not None:
-            crop = min(crop, size)
         maps = framed_maps(graph, size, seed, theta)
         image = render_maps(maps, self.camera)
         if image.shape[0] != theta.shape[0]:

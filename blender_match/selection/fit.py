@@ -26,13 +26,13 @@ phone's beam pattern and vignetting. Each candidate fits under its own camera.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import torch
 
 from ..diffmat import MaterialGraph
 from ..diffmat.calibration import solve_lighting
-from ..diffmat.optim import FitResult, Schedule, Stage, TargetLoss, fit
+from ..diffmat.optim import FitResult, Schedule, TargetLoss, fit
 from ..diffmat.render import FlashCamera
 from ..diffmat.zoom_search import search_zoom
 from ..errors import OptionError
@@ -84,9 +84,8 @@ class Fitted:
 def probe_schedule(schedule: Schedule, iterations: int) -> Schedule:
     """The schedule's first stage alone, for ``iterations``: the probe round."""
     first = schedule.stages[0]
-    return Schedule(f"{schedule.name}-probe", (Stage(first.size, first.scales, iterations, first.lr,
-                                                     first.final_lr_ratio, crop=first.crop),),
-                    None, schedule.min_improvement)
+    return Schedule(f"{schedule.name}-probe", (replace(first, iterations=iterations, warmup=0),), None,
+                    schedule.min_improvement)
 
 
 def frame_start(graph, loss: TargetLoss, theta: torch.Tensor, schedule: Schedule, seed: int = 0,

@@ -155,7 +155,7 @@ def test_every_preset_renders_at_the_photo_size():
 
 def test_every_preset_ends_describing_the_grain_at_its_own_size():
     """The last stage of every preset sees a grain of a few pixels at the render's size: described
-    at half that size or more, or with a full-resolution crop (draft)."""
+    at half that size or more, or with a full-resolution crop."""
     for schedule in QUALITY_SCHEDULES.values():
         last = schedule.stages[-1]
         assert last.crop is not None or 2 * max(last.scales) >= last.size, schedule.name
