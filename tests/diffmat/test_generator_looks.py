@@ -8,8 +8,9 @@ import torch
 import torch.nn.functional as tnf
 
 from blender_match.diffmat import F
+from blender_match.diffmat.functional.common import gaussian_blur
 
-CHANGED_NOISES = ("clouds_2", "bnw_spots_2", "bnw_spots_3")
+CHANGED_NOISES = ("clouds_2", "bnw_spots_2", "bnw_spots_3", "moisture_noise")
 
 
 def _spectral_centroid(x: torch.Tensor) -> float:
@@ -82,6 +83,25 @@ def test_bnw_spots_2_is_balanced_black_and_white(seed):
     x = F.noise_bnw_spots_2(size=128, seed=seed)
     assert 0.45 < x.mean().item() < 0.55
     assert 0.2 < _saturated(x) < 0.4
+
+
+def _streakiness(x: torch.Tensor) -> float:
+    """Mean coherence of the structure tensor (0: no preferred direction anywhere, 1: parallel
+    streaks everywhere) of a (1, 1, n, n) image, gradients smoothed over about 8 pixels."""
+    gx = (x.roll(-1, -1) - x.roll(1, -1)) / 2
+    gy = (x.roll(-1, -2) - x.roll(1, -2)) / 2
+    xx, yy, xy = (gaussian_blur(t, 4.0) for t in (gx * gx, gy * gy, gx * gy))
+    return ((xx - yy) ** 2 + 4 * xy * xy).sqrt().div(xx + yy + 1e-9).mean().item()
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2])
+def test_moisture_noise_is_discs_around_grey_not_swirls(seed):
+    """Moisture noise: discs of varying size added to and subtracted from a base grey (Substance's
+    documentation). Its mean stays at mid-grey and nothing in it runs in one direction; the
+    domain-warped fractal it replaced drew marble-like swirls (streakiness 0.06-0.12, here under 0.045)."""
+    x = F.noise_moisture_noise(size=256, seed=seed)
+    assert 0.47 < x.mean().item() < 0.53
+    assert _streakiness(x) < 0.045
 
 
 @pytest.mark.parametrize("name", CHANGED_NOISES)

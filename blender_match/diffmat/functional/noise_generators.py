@@ -51,7 +51,8 @@ class Recipe:
     """How one named generator combines the primitives (see the module docstring).
 
     base: "fbm" (fractal lattice noise), "facet" (cellular: a random plane per cell, crystal look),
-    "edges" (cellular F2 - F1: bright cell interiors, dark seams), "spots" (Gaussian spot field).
+    "edges" (cellular F2 - F1: bright cell interiors, dark seams), "spots" (Gaussian spot field),
+    "discs" (signed Gaussian spot fields over octaves: ``signed_disc_field``).
     cells: lattice cells across the image at scale 1; aspect: (x, y) multipliers of it (a small x
     and large y give horizontal streaks). kind / interp / octaves / roughness / mode: the fractal
     sum (``fractal_noise``). warp: domain-warp distance (texture units) by a fractal vector field
@@ -100,7 +101,30 @@ def _base_layer(r: Recipe, k: int, size: int, seed: int, key: str, disorder, rou
     if r.base == "spots":
         return gaussian_spot_field(r.cells * k, size, seed=seed, key=key, radius=r.radius, density=r.density,
                                    disorder=disorder, device=device, dtype=dtype)
+    if r.base == "discs":
+        return signed_disc_field(r, k, size, seed, key, disorder, roughness, device, dtype)
     raise ValueError(f"unknown recipe base {r.base!r}")
+
+
+def signed_disc_field(r: Recipe, k: int, size: int, seed: int, key: str, disorder, roughness, device, dtype):
+    """Soft discs of random size added to and subtracted from a flat field, ``r.octaves`` levels
+    from ``r.cells`` x ``k`` cells across, each level twice as dense and ``roughness`` times as
+    strong (Substance's Moisture noise: "discs of varying hardness and size are scattered and add
+    or subtract from the color below, starting from a base gray"). Zero mean, (B, 1, size, size).
+    Levels with fewer than two pixels a disc are left out of the render, as ``fractal_noise`` does."""
+    weight = param4d(roughness).to(device=device, dtype=dtype)
+    total: torch.Tensor | float = 0.0
+    for level in range(r.octaves):
+        cells = r.cells * k * 2 ** level
+        if level and 2 * cells > size:
+            break
+        ups = gaussian_spot_field(cells, size, seed=seed, key=(key, "add", level), radius=r.radius,
+                                  density=r.density, disorder=disorder, device=device, dtype=dtype)
+        downs = gaussian_spot_field(cells, size, seed=seed, key=(key, "subtract", level), radius=r.radius,
+                                    density=r.density, disorder=disorder, device=device, dtype=dtype)
+        total = total + weight ** level * (ups - downs)
+    assert isinstance(total, torch.Tensor)
+    return total
 
 
 def _detail_layer(r: Recipe, k: int, size: int, seed: int, key: str, disorder, device, dtype):
@@ -251,8 +275,8 @@ NOISE_RECIPES: dict[str, tuple[Recipe, tuple, tuple]] = {
     "bnw_spots_1": (Recipe(cells=4, octaves=5, roughness=0.5, gain=1.6), (1, 32, 1), ()),
     "bnw_spots_2": (Recipe(cells=4, octaves=7, roughness=0.75, gain=1.5), (1, 32, 1), ()),
     "bnw_spots_3": (Recipe(cells=4, octaves=7, roughness=0.9, gain=0.9), (1, 32, 1), ()),
-    # Moisture Noise: warped fractal stains
-    "moisture_noise": (Recipe(cells=2, octaves=7, roughness=0.55, warp=0.06, gain=0.8), (1, 32, 1), ()),
+    # Moisture Noise: soft discs added to and subtracted from grey, 5 levels from 4 cells
+    "moisture_noise": (Recipe(base="discs", cells=4, octaves=5, roughness=0.6, radius=0.35, gain=0.6), (1, 32, 1), ()),
     # Fractal Sum 1-4: presets of a fractal sum (plain value, ridged, billowed, fine gradient)
     "fractal_sum_1": (Recipe(kind="value", cells=2, octaves=8, roughness=0.5, gain=0.45), (1, 32, 1), ("roughness",)),
     "fractal_sum_2": (Recipe(cells=2, octaves=7, roughness=0.55, mode="ridged", gain=0.6), (1, 32, 1), ("roughness",)),
