@@ -104,6 +104,31 @@ def test_moisture_noise_is_discs_around_grey_not_swirls(seed):
     assert _streakiness(x) < 0.045
 
 
+@pytest.mark.parametrize("seed", [0, 1, 2])
+def test_crystal_2_is_upright_shards_in_a_grey_range(seed):
+    """Crystal 2 sums long near-upright shards of signed brightness onto mid-grey, its coarsest
+    level dominating (the MATch reference: std about 0.11, no black or white): steps across are
+    several times the steps down. The cellular F2 - F1 it replaced had no direction (ratio about
+    1) and three times the contrast, 18 % of it black or white."""
+    x = F.noise_crystal_2(size=128, seed=seed)[0, 0]
+    across = (x[:, 1:] - x[:, :-1]).abs().mean().item()
+    down = (x[1:] - x[:-1]).abs().mean().item()
+    assert across > 2.5 * down
+    assert 0.08 < x.std().item() < 0.14
+    assert _saturated(x) < 0.01
+
+
+def test_crystal_2_tiles_and_agrees_across_sizes():
+    """Its hard shard edges make steps between neighbouring rows vary a lot, so the step across the
+    wrap is held to the largest step inside (a seam would stand above all of them)."""
+    x = F.noise_crystal_2(size=128, seed=3)
+    img = x[0, 0]
+    for rows in (img, img.T):
+        steps = (rows - rows.roll(1, 0)).abs().mean(1)       # steps[0] is across the wrap
+        assert steps[0] <= steps[1:].max()
+    assert (tnf.avg_pool2d(F.noise_crystal_2(size=256, seed=3), 2) - x).abs().mean() < 0.05
+
+
 @pytest.mark.parametrize("name", CHANGED_NOISES)
 def test_changed_noises_tile_and_agree_across_sizes(name):
     fn = getattr(F, f"noise_{name}")

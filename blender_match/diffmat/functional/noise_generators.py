@@ -36,6 +36,7 @@ from .noise_primitives import (
     lattice_noise,
     lattice_phases,
     noise_batch,
+    shard_field,
     select_rows,
     squash,
     supersample_factor,
@@ -52,7 +53,8 @@ class Recipe:
 
     base: "fbm" (fractal lattice noise), "facet" (cellular: a random plane per cell, crystal look),
     "edges" (cellular F2 - F1: bright cell interiors, dark seams), "spots" (Gaussian spot field),
-    "discs" (signed Gaussian spot fields over octaves: ``signed_disc_field``).
+    "discs" (signed Gaussian spot fields over octaves: ``signed_disc_field``), "shards" (upright
+    half-bell shards of signed brightness over octaves: ``shard_field``).
     cells: lattice cells across the image at scale 1; aspect: (x, y) multipliers of it (a small x
     and large y give horizontal streaks). kind / interp / octaves / roughness / mode: the fractal
     sum (``fractal_noise``). warp: domain-warp distance (texture units) by a fractal vector field
@@ -103,28 +105,38 @@ def _base_layer(r: Recipe, k: int, size: int, seed: int, key: str, disorder, rou
                                    disorder=disorder, device=device, dtype=dtype)
     if r.base == "discs":
         return signed_disc_field(r, k, size, seed, key, disorder, roughness, device, dtype)
+    if r.base == "shards":
+        return level_sum(lambda cells, level: shard_field(cells, size, seed=seed, key=(key, level), disorder=disorder,
+                                                          device=device, dtype=dtype),
+                         r, k, size, roughness, device, dtype)
     raise ValueError(f"unknown recipe base {r.base!r}")
 
 
-def signed_disc_field(r: Recipe, k: int, size: int, seed: int, key: str, disorder, roughness, device, dtype):
-    """Soft discs of random size added to and subtracted from a flat field, ``r.octaves`` levels
-    from ``r.cells`` x ``k`` cells across, each level twice as dense and ``roughness`` times as
-    strong (Substance's Moisture noise: "discs of varying hardness and size are scattered and add
-    or subtract from the color below, starting from a base gray"). Zero mean, (B, 1, size, size).
-    Levels with fewer than two pixels a disc are left out of the render, as ``fractal_noise`` does."""
+def level_sum(level_field, r: Recipe, k: int, size: int, roughness, device, dtype) -> torch.Tensor:
+    """The sum over ``r.octaves`` levels of ``level_field(cells, level)``, from ``r.cells`` x ``k``
+    cells across, each level twice as dense and ``roughness`` times as strong. Levels with fewer
+    than two pixels a cell are left out of the render, as ``fractal_noise`` does."""
     weight = param4d(roughness).to(device=device, dtype=dtype)
     total: torch.Tensor | float = 0.0
     for level in range(r.octaves):
         cells = r.cells * k * 2 ** level
         if level and 2 * cells > size:
             break
-        ups = gaussian_spot_field(cells, size, seed=seed, key=(key, "add", level), radius=r.radius,
-                                  density=r.density, disorder=disorder, device=device, dtype=dtype)
-        downs = gaussian_spot_field(cells, size, seed=seed, key=(key, "subtract", level), radius=r.radius,
-                                    density=r.density, disorder=disorder, device=device, dtype=dtype)
-        total = total + weight ** level * (ups - downs)
+        total = total + weight ** level * level_field(cells, level)
     assert isinstance(total, torch.Tensor)
     return total
+
+
+def signed_disc_field(r: Recipe, k: int, size: int, seed: int, key: str, disorder, roughness, device, dtype):
+    """Soft discs of random size added to and subtracted from a flat field over ``level_sum``'s
+    levels (Substance's Moisture noise: "discs of varying hardness and size are scattered and add
+    or subtract from the color below, starting from a base gray"). (B, 1, size, size)."""
+    def discs(cells: int, level: int) -> torch.Tensor:
+        ups, downs = (gaussian_spot_field(cells, size, seed=seed, key=(key, sign, level), radius=r.radius,
+                                          density=r.density, disorder=disorder, device=device, dtype=dtype)
+                      for sign in ("add", "subtract"))
+        return ups - downs
+    return level_sum(discs, r, k, size, roughness, device, dtype)
 
 
 def _detail_layer(r: Recipe, k: int, size: int, seed: int, key: str, disorder, device, dtype):
@@ -293,10 +305,11 @@ NOISE_RECIPES: dict[str, tuple[Recipe, tuple, tuple]] = {
     "directionnal_noise": (Recipe(cells=1, aspect=(1, 8), octaves=5, roughness=0.55, gain=0.55), (1, 32, 4), ()),
     "directional_noise_4": (Recipe(kind="value", cells=1, aspect=(1, 12), octaves=4, roughness=0.5, mode="ridged",
                                    warp=0.02, gain=0.6), (1, 32, 4), ()),
-    # Crystal 1: random facets per cell; Crystal 2: facets with dark seams (F2 - F1)
+    # Crystal 1: random facets per cell; Crystal 2: upright half-bell shards of signed brightness over
+    # grey, 3 levels from 8 cells, each 0.18 times as strong (the MATch reference's facts)
     "crystal_1": (Recipe(base="facet", cells=4, detail="speckle", detail_cells=16, detail_weight=0.15, gain=1.0),
                   (1, 32, 2), ()),
-    "crystal_2": (Recipe(base="edges", cells=4, gain=1.1), (1, 32, 2), ()),
+    "crystal_2": (Recipe(base="shards", cells=8, octaves=3, roughness=0.18, gain=0.22), (1, 16, 1), ()),
     # Herb 1: vertical blades (16x more cells across than down), ridged, slightly warped
     "herb_1": (Recipe(cells=1, aspect=(16, 1), octaves=3, roughness=0.5, mode="ridged", warp=0.03, gain=1.2,
                       offset=-0.3), (1, 32, 2), ()),

@@ -494,6 +494,53 @@ def gaussian_spot_field(cells: int, size: int, *, seed: int = 0, key="spots", ra
     return out
 
 
+SHARD_REACH = (3, 5)   # cells a shard reaches from its own, across and down (see shard_field)
+
+
+def shard_field(cells: int, size: int, *, seed: int = 0, key="shards", disorder=0.0, device=None,
+                dtype=torch.float32) -> torch.Tensor:
+    """Upright half-bell shards, one per cell of a ``cells`` x ``cells`` lattice, each of random
+    brightness in [-1, 1] added to a flat zero field: (B, 1, size, size).
+
+    A shard is 1-2 cells wide and 4-8 cells tall, turned by up to 0.0675 turn (about 24 degrees)
+    from upright; its profile is a bell, (1 - r^2)^2 over its ellipse, cut off sharply along its
+    long axis (the right half is empty), so every shard has one soft and one hard edge. These are
+    the facts of Crystal 2's patterns in the public MATch reference (docs/generators.md). A shard
+    reaches at most ``SHARD_REACH`` cells from its own, so each sample sums the shards of that
+    neighbourhood of cells.
+    """
+    n = max(int(cells), 1)
+    px, py, _ = _feature_points(n, seed, key, 0.6, disorder, device, dtype)            # (B, n*n)
+    width, height, turn, level = _uniforms(seed, (key, "shape"), n, 4, device, dtype)
+    angle = TWO_PI * 0.0675 * (turn * 2 - 1)
+    b = px.shape[0]
+    centres = torch.cat([px, py])                                                      # (2B, n*n)
+    # per cell: cos and sin of the turn over the half width, then over the half height, brightness
+    shapes = torch.stack([torch.cos(angle) * 2 / (1.0 + width), torch.sin(angle) * 2 / (1.0 + width),
+                          torch.cos(angle) / (2.0 + 2.0 * height), torch.sin(angle) / (2.0 + 2.0 * height),
+                          level * 2 - 1])                                              # (5, n*n)
+    ss, res, ci, cf = _cell_grid(size, n, device, dtype)
+    out = torch.zeros(b, res * res, device=device, dtype=dtype)
+    fx = cf[None, :].expand(res, res).reshape(-1)
+    fy = cf[:, None].expand(res, res).reshape(-1)
+    reach_x, reach_y = SHARD_REACH
+    for dy in range(-reach_y, reach_y + 1):
+        rows = torch.remainder(ci + dy, n)[:, None] * n
+        for dx in range(-reach_x, reach_x + 1):
+            cell = (rows + torch.remainder(ci + dx, n)[None, :]).reshape(-1)
+            centre = centres[:, cell]
+            cos_w, sin_w, cos_h, sin_h, brightness = shapes[:, cell]
+            ox = fx - dx - centre[:b]
+            oy = fy - dy - centre[b:]
+            u = ox * cos_w + oy * sin_w
+            v = oy * cos_h - ox * sin_h
+            out = out + brightness * (1 - u * u - v * v).clamp(min=0) ** 2 * (u <= 0).to(dtype)
+    out = out.reshape(b, 1, res, res)
+    if ss > 1:
+        out = F.avg_pool2d(out, ss)
+    return out
+
+
 def white_lattice_noise(size: int, *, cells: int = 512, seed: int = 0, key="white", device=None,
                         dtype=torch.float32) -> torch.Tensor:
     """Uniform white noise on a fixed texture-space lattice of ``cells`` x ``cells`` values:
