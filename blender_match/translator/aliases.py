@@ -43,6 +43,7 @@ PARAM_ALIASES: dict[str, dict[str, str | tuple[str, ...]]] = {
     "brick_generator": {"bricks": ("x_amount", "y_amount"), "gap": "interstice"},
     "scratches_generator": {"scratches_amount": "amount"},
     "mesh_1": {"mesh_width": "width"},
+    "stripes": {"stripes": "number"},
     # legacy noises: "Distance" is the zoom / scale slider
     "perlin_noise_zoom": {"distance": "scale"},
     "plasma": {"distance": "scale"},

@@ -71,6 +71,16 @@ def test_shape_size_and_legacy_noise_distance(tmp_path):
     assert torch.isfinite(t.graph(size=SIZE)["height"]).all()
 
 
+def test_stripes_count_is_read_from_its_library_identifier(tmp_path):
+    """The library's Stripes names its count ``Stripes`` (a production zebra skin sets 30 and a
+    Shift of 30 for 45-degree stripes); it was dropped, so the node drew its default 10."""
+    t = _one_instance(tmp_path, "stripes", [W.param("Stripes", "constantValueInt32", 30),
+                                            W.param("Shift", "constantValueInt32", 30)], out_ident="Stripes")
+    assert t.report["params_dropped"] == 0
+    vals, _ = _values(t, "stripes")
+    assert (vals["number"], vals["shift"]) == (30, 30)
+
+
 def test_vector_parameter_spread_over_components(tmp_path):
     t = _one_instance(tmp_path, "brick_generator", [W.param("Bricks", "constantValueInt2", "3 9"),
                                                     W.param("Bevel", "constantValueFloat4", "0.1 0.2 1 1")],

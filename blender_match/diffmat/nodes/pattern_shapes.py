@@ -66,10 +66,11 @@ register(NodeSpec(
 
 register(NodeSpec(
     "stripes", "generator", F.stripes,
-    params=(Param("number", 10, 1, 64, kind="int", doc="stripes per image"),
+    params=(Param("number", 10, 1, 512, kind="int", doc="stripes per image"),
             Param("width", 0.5, 0.0, 1.0, doc="fraction of the period that is white"),
             Param("softness", 0.0, 0.0, 1.0, doc="edge softness"),
-            Param("shift", 0, -16, 16, kind="int", doc="slant: periods shifted over the image height")),
+            Param("shift", 0, -64, 64, kind="int",
+                  doc="slant: periods shifted over the image height (shift = number: 45 degrees)")),
     context=GEN_NOSEED,
     doc="Stripes: parallel bands."))
 
