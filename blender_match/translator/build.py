@@ -43,7 +43,7 @@ from .model import Graph, Node, Package, Param
 from .parse import load_package
 from .runtime import fit_components
 from .type_codes import TYPE_CODES
-from .values import IMAGE_TYPES, BadValue, Value
+from .values import IMAGE_TYPES, BadValue, ClampedValue, Value
 from .xml_safety import MAX_BYTES, read_document
 
 SAFE = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
@@ -644,6 +644,9 @@ class Builder:
                 return
             try:
                 ir.params[sp.name] = convert(sp, _adjust(value.python(), spec_name, sp.name, ident, component))
+            except ClampedValue as exc:
+                ir.params[sp.name] = exc.value
+                self.stats.warn(f"{where}: {exc}")
             except BadValue as exc:
                 self.stats.warn(f"{where}: {exc}; default kept")
             return
@@ -662,6 +665,10 @@ class Builder:
             raw = self._fold(graph, seed)
             adjusted = _adjust(raw, spec_name, sp.name, ident, component)
             value = convert(sp, adjusted)
+        except ClampedValue as exc:  # unbound: the function would give the value past the range again
+            ir.params[sp.name] = exc.value
+            self.stats.warn(f"{where}: {exc}")
+            return
         except (fgs.FunctionError, BadValue, TypeError, ValueError) as exc:
             self.stats.warn(f"{where}: {exc}; default kept")
             return
@@ -809,7 +816,8 @@ def _adjust(value, spec_name: str, param: str, ident: str, component: int | None
 
 def convert(sp, value):
     """A file value (number, list, bool or str) as a value of the spec parameter ``sp``;
-    BadValue when it does not fit (the caller keeps the default)."""
+    BadValue when it does not fit (the caller keeps the default), ClampedValue for an integer past
+    the parameter's range (the caller takes the nearest in range)."""
     if sp.kind == "string":
         if isinstance(value, str) and (value == "" or SAFE.match(value)):
             return value
@@ -829,7 +837,8 @@ def convert(sp, value):
     if sp.kind == "enum" and x not in sp.choices:
         raise BadValue(f"value {x} is not one of {list(sp.choices)}")
     if sp.kind == "int" and not sp.min <= x <= sp.max:
-        raise BadValue(f"value {x} is outside [{sp.min:g}, {sp.max:g}]")
+        nearest = int(min(max(x, sp.min), sp.max))
+        raise ClampedValue(f"value {x} is outside [{sp.min:g}, {sp.max:g}]; {nearest} used", nearest)
     return x
 
 

@@ -15,6 +15,15 @@ class BadValue(BlenderMatchError):
     """A value that cannot be decoded; the caller falls back to a default and reports it."""
 
 
+class ClampedValue(BadValue):
+    """An integer past its parameter's range: the caller uses ``value``, the nearest one in range
+    (Substance takes slider ranges as hints, so the file's value is meant), and reports it."""
+
+    def __init__(self, message: str, value: int):
+        super().__init__(message)
+        self.value = value
+
+
 @dataclass(frozen=True)
 class Value:
     """A decoded constant: ``kind`` float | int | bool | string; ``value`` a tuple of numbers

@@ -81,6 +81,18 @@ def test_stripes_count_is_read_from_its_library_identifier(tmp_path):
     assert (vals["number"], vals["shift"]) == (30, 30)
 
 
+def test_an_integer_past_its_slider_is_used_or_clamped(tmp_path):
+    """Substance takes slider ranges as hints: a production file's Tile Generator of 100 x 100
+    tiles was drawn with the default 10 x 10. An integer past the spec's range is now clamped to
+    it (and reported), one within the engine's range used as it is."""
+    t = _one_instance(tmp_path, "tile_generator", [W.param("X_Amount", "constantValueInt32", 100),
+                                                   W.param("Y_Amount", "constantValueInt32", 900)],
+                      out_ident="TileGenerator")
+    vals, _ = _values(t, "tile_generator")
+    assert (vals["x_amount"], vals["y_amount"]) == (100, 256)
+    assert any("y_amount: value 900 is outside [1, 256]; 256 used" in w for w in t.report["warnings"])
+
+
 def test_vector_parameter_spread_over_components(tmp_path):
     t = _one_instance(tmp_path, "brick_generator", [W.param("Bricks", "constantValueInt2", "3 9"),
                                                     W.param("Bevel", "constantValueFloat4", "0.1 0.2 1 1")],

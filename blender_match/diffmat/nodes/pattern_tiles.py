@@ -10,8 +10,8 @@ PATTERN_DOC = ", ".join(f"{i} {n}" for i, n in enumerate(TILE_PATTERNS))
 
 def _layout(pattern=8, scale=1.0):
     return (
-        Param("x_amount", 10, 1, 64, kind="int", doc="tiles across"),
-        Param("y_amount", 10, 1, 64, kind="int", doc="tiles down"),
+        Param("x_amount", 10, 1, 256, kind="int", doc="tiles across"),
+        Param("y_amount", 10, 1, 256, kind="int", doc="tiles down"),
         Param("pattern", pattern, kind="enum", choices=tuple(range(len(TILE_PATTERNS))), doc=PATTERN_DOC),
         Param("pattern_specific", 0.2, 0.0, 1.0, doc="shape-dependent control (Brick: bevel width)"),
         Param("scale", scale, 0.0, 2.0, doc="1 fills the cell"),
@@ -48,8 +48,8 @@ register(NodeSpec(
 register(NodeSpec(
     "tile_sampler", "generator", F.tile_sampler_pattern,
     inputs=(Input("pattern_input", "any", optional=True),),
-    params=(Param("x_amount", 16, 1, 64, kind="int"),
-            Param("y_amount", 16, 1, 64, kind="int"),
+    params=(Param("x_amount", 16, 1, 256, kind="int"),
+            Param("y_amount", 16, 1, 256, kind="int"),
             Param("pattern", 1, kind="enum", choices=tuple(range(len(TILE_PATTERNS))), doc=PATTERN_DOC),
             Param("scale", 0.8, 0.0, 2.0),
             Param("size_xy", (1.0, 1.0), 0.0, 2.0, size=2, doc="non-uniform size"),
@@ -65,8 +65,8 @@ register(NodeSpec(
 
 register(NodeSpec(
     "brick_generator", "generator", F.brick_pattern,
-    params=(Param("x_amount", 4, 1, 64, kind="int"),
-            Param("y_amount", 8, 1, 64, kind="int"),
+    params=(Param("x_amount", 4, 1, 256, kind="int"),
+            Param("y_amount", 8, 1, 256, kind="int"),
             Param("offset", 0.5, 0.0, 1.0, doc="alternate rows shift, bricks"),
             Param("interstice", (0.04, 0.08), 0.0, 0.5, size=2, doc="gap, fraction of the brick (x, y)"),
             Param("bevel", 0.1, 0.0, 0.5, doc="fraction of the brick height"),
