@@ -26,14 +26,16 @@ import re
 
 # node (spec name) -> {normalised file identifier: spec parameter, or a tuple of spec parameters
 # taking the file value's components in order}
+TILE_GENERATOR_ALIASES: dict[str, str | tuple[str, ...]] = {
+    "pattern_type": "pattern", "pattern_size": "size_xy", "size": "size_xy", "position_offset": "offset",
+    "random_mask": "mask_random", "nb_x": "x_amount", "nb_y": "y_amount",
+    "luminance_variation": "luminance_random", "luminance_variation_contrast": "luminance_random",
+    "pattern_size_random": "scale_random",
+}
 PARAM_ALIASES: dict[str, dict[str, str | tuple[str, ...]]] = {
     # pattern generators: library identifiers (current and older library versions)
-    "tile_generator": {
-        "pattern_size": "size_xy", "size": "size_xy", "position_offset": "offset",
-        "random_mask": "mask_random", "nb_x": "x_amount", "nb_y": "y_amount",
-        "luminance_variation": "luminance_random", "luminance_variation_contrast": "luminance_random",
-        "pattern_size_random": "scale_random",
-    },
+    "tile_generator": TILE_GENERATOR_ALIASES,
+    "tile_generator_color": {**TILE_GENERATOR_ALIASES, "color_variation": "color_random", "color": "pattern_color"},
     "tile_sampler": {
         "pattern_size": "size_xy", "size": "size_xy", "position_offset": "offset",
         "random_mask": "mask_random", "nb_x": "x_amount", "nb_y": "y_amount",
@@ -44,9 +46,10 @@ PARAM_ALIASES: dict[str, dict[str, str | tuple[str, ...]]] = {
     "scratches_generator": {"scratches_amount": "amount"},
     "mesh_1": {"mesh_width": "width"},
     "stripes": {"stripes": "number"},
-    # legacy noises: "Distance" is the zoom / scale slider
+    # legacy noises: "Distance" is the zoom / scale slider (cells: 10-30 in production files)
     "perlin_noise_zoom": {"distance": "scale"},
     "plasma": {"distance": "scale"},
+    **{f"cells_{k}": {"distance": "scale"} for k in range(1, 5)},
     # filters
     "normal_to_height": {"global_opacity": "opacity"},
     "non_uniform_blur_grayscale": {"blade": "blades"},

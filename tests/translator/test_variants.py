@@ -44,6 +44,11 @@ def test_normalisation_and_resolution_rules():
     assert aliases.resolve_param(tile, "position_offset") == [("offset", None)]
     assert aliases.resolve_param(tile, "X_Amount") == [("x_amount", None)]
     assert aliases.resolve_param(tile, "no_such_thing") == []
+    assert aliases.resolve_param(tile, "Pattern_Type") == [("pattern", None)]
+    colour = get_spec("tile_generator_color")
+    assert aliases.resolve_param(colour, "Nb_X") == [("x_amount", None)]           # 64 in a production granite
+    assert aliases.resolve_param(colour, "Color_Variation") == [("color_random", None)]
+    assert aliases.resolve_param(get_spec("cells_1"), "Distance") == [("scale", None)]
     scratches = get_spec("scratches_generator")
     assert aliases.resolve_param(scratches, "scratches_width") == [("width", None)]   # node-word prefix
     levels = get_spec("levels")
