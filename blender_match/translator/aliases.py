@@ -30,7 +30,7 @@ TILE_GENERATOR_ALIASES: dict[str, str | tuple[str, ...]] = {
     "pattern_type": "pattern", "pattern_size": "size_xy", "size": "size_xy", "position_offset": "offset",
     "random_mask": "mask_random", "nb_x": "x_amount", "nb_y": "y_amount",
     "luminance_variation": "luminance_random", "luminance_variation_contrast": "luminance_random",
-    "pattern_size_random": "scale_random",
+    "pattern_size_random": "scale_random", "randommask": "mask_random",
 }
 PARAM_ALIASES: dict[str, dict[str, str | tuple[str, ...]]] = {
     # pattern generators: library identifiers (current and older library versions)

@@ -89,6 +89,21 @@ def test_tile_generator_mask_random_hides_tiles_and_is_differentiable():
     assert m.grad is not None and m.grad.item() < 0
 
 
+def test_tile_generator_mask_switches_hide_every_other_tile_column_or_row():
+    """Substance's Checker Mask hides every other tile, Horizontal Mask every other column,
+    Vertical Mask every other row, and Invert Mask shows only what they hide."""
+    def tiles(**switches):   # the 4 x 4 tiles' centre values
+        out = _render("tile_generator", x_amount=4, y_amount=4, pattern=1, scale=0.5, **switches)[0, 0]
+        return out[S // 8::S // 4, S // 8::S // 4]
+    j, i = torch.meshgrid(torch.arange(4), torch.arange(4), indexing="ij")
+    assert torch.equal(tiles(), torch.ones(4, 4))
+    assert torch.equal(tiles(checker_mask=True), ((i + j) % 2 == 0).float())
+    assert torch.equal(tiles(horizontal_mask=True), (i % 2 == 0).float())
+    assert torch.equal(tiles(vertical_mask=True), (j % 2 == 0).float())
+    assert torch.equal(tiles(checker_mask=True, invert_mask=True), ((i + j) % 2 == 1).float())
+    assert torch.equal(tiles(invert_mask=True), torch.ones(4, 4))   # nothing masked, nothing to invert
+
+
 def test_tile_generator_pattern_input_is_stamped_in_each_tile():
     img = torch.zeros(1, 1, 16, 16)
     img[..., :, :8] = 1.0  # left half white

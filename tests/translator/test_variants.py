@@ -45,6 +45,8 @@ def test_normalisation_and_resolution_rules():
     assert aliases.resolve_param(tile, "X_Amount") == [("x_amount", None)]
     assert aliases.resolve_param(tile, "no_such_thing") == []
     assert aliases.resolve_param(tile, "Pattern_Type") == [("pattern", None)]
+    assert aliases.resolve_param(tile, "CheckerMask") == [("checker_mask", None)]      # underscores squashed
+    assert aliases.resolve_param(tile, "RandomMask") == [("mask_random", None)]
     colour = get_spec("tile_generator_color")
     assert aliases.resolve_param(colour, "Nb_X") == [("x_amount", None)]           # 64 in a production granite
     assert aliases.resolve_param(colour, "Color_Variation") == [("color_random", None)]

@@ -236,9 +236,41 @@ def _tile_reach(nx, ny, hx, hy, rotation, rotation_random, position_random, soft
     return rotated, mxb, myb
 
 
+@dataclass(frozen=True)
+class GridMask:
+    """The Tile Generator's mask switches: ``checker`` hides every other tile, ``columns`` every
+    other column (Substance's Horizontal Mask), ``rows`` every other row (Vertical Mask), each
+    the odd ones; ``invert`` swaps what the masks, random mask included, hide and show."""
+
+    checker: bool = False
+    columns: bool = False
+    rows: bool = False
+    invert: bool = False
+
+    @property
+    def active(self) -> bool:
+        return self.checker or self.columns or self.rows or self.invert
+
+    def shown(self, nx: int, ny: int, device, dtype) -> torch.Tensor:
+        """1 where the switches leave a cell, 0 where they hide it: (1, ny * nx), row-major."""
+        j = torch.arange(ny, device=device).view(ny, 1)
+        i = torch.arange(nx, device=device).view(1, nx)
+        hidden = torch.zeros(ny, nx, dtype=torch.bool, device=device)
+        if self.checker:
+            hidden = hidden | ((i + j) % 2 == 1)
+        if self.columns:
+            hidden = hidden | (i % 2 == 1)
+        if self.rows:
+            hidden = hidden | (j % 2 == 1)
+        return (~hidden).to(dtype).reshape(1, -1)
+
+    def apply(self, shown: torch.Tensor) -> torch.Tensor:
+        return 1.0 - shown if self.invert else shown
+
+
 def _cell_values(nx, ny, rnd, pix, hx, hy, softness, position_random, scale_random, rotation, rotation_random,
                  luminance_random, mask_random, spec, spec_random, cr, *, use_pos, use_scale, use_rot, use_lum,
-                 use_mask, use_spec) -> dict[str, torch.Tensor]:
+                 use_mask, use_spec, grid_mask: GridMask) -> dict[str, torch.Tensor]:
     """The per-cell quantities that vary between cells, each (B|1, ny * nx)."""
     # per-cell derived quantities (B|1, ny * nx): every transcendental is evaluated once a cell, and
     # a pixel gathers only what varies between cells
@@ -262,13 +294,14 @@ def _cell_values(nx, ny, rnd, pix, hx, hy, softness, position_random, scale_rand
         iex = 1.0 / (ex_c if use_scale else pc(hx.clamp_min(1e-6)))
         iey = 1.0 / (ey_c if use_scale else pc(hy.clamp_min(1e-6)))
         cellv["a11"], cellv["a12"], cellv["a21"], cellv["a22"] = ca * iex, sa * iex, -sa * iey, ca * iey
-    if use_lum or use_mask:
+    if use_lum or use_mask or grid_mask.active:
         fac: float | torch.Tensor = 1.0
         if use_lum:
             fac = 1.0 - pc(luminance_random) * rnd[RND_LUM]
-        if use_mask:
+        if use_mask or grid_mask.active:
             # soft mask: fully visible at mask_random = 0, fully hidden at mask_random = 1
-            fac = fac * smoothstep01((rnd[RND_MASK] - pc(mask_random) * 1.05) / 0.05 + 1.0)
+            shown = smoothstep01((rnd[RND_MASK] - pc(mask_random) * 1.05) / 0.05 + 1.0)
+            fac = fac * grid_mask.apply(shown * grid_mask.shown(nx, ny, rnd.device, rnd.dtype))
         cellv["fac"] = fac
     if use_spec:
         cellv["sp"] = (pc(spec) + pc(spec_random) * (rnd[RND_SPEC] - 0.5)).clamp(0.0, 1.0)
@@ -358,14 +391,15 @@ def tile_supersampling(size: int, nx: int, ny: int) -> int:
 def tile_field(size: int, nx: int, ny: int, *, seed: int, profile: Callable, scale=1.0, size_xy=(1.0, 1.0),
                interstice=(0.0, 0.0), offset=0.0, position_random=0.0, scale_random=0.0, rotation=0.0,
                rotation_random=0.0, luminance_random=0.0, mask_random=0.0, pattern_specific=0.5,
-               pattern_specific_random=0.0, softness=0.0, color_random=None, own_cell: bool = False, device=None,
-               dtype=torch.float32):
+               pattern_specific_random=0.0, softness=0.0, color_random=None, grid_mask: GridMask = GridMask(),
+               own_cell: bool = False, device=None, dtype=torch.float32):
     """A grid of ``nx`` × ``ny`` cells, one shape per cell; every alternate row is shifted right by
     ``offset`` cells. The shape fills its cell at scale 1 less the ``interstice`` gap (fraction of
     the cell), times ``size_xy`` (non-uniform size). Per cell, from ``lattice_random(seed)``:
     position jitter up to ±``position_random``/2 cells, scale × (1 - ``scale_random`` r), rotation
     ``rotation`` ± ``rotation_random``/2 turns, luminance × (1 - ``luminance_random`` r), and the
-    cell is hidden when r < ``mask_random`` (a soft threshold, so mask_random is differentiable).
+    cell is hidden when r < ``mask_random`` (a soft threshold, so mask_random is differentiable),
+    and ``grid_mask`` hides every other tile, column or row (or, inverted, shows only those).
 
     ``softness`` (local units, 1 = the half size) widens hard edges beyond the one-pixel
     anti-aliasing. ``profile(x, y, w, spec, ex, ey)`` gives the shape's height at local coordinates
@@ -412,7 +446,10 @@ def tile_field(size: int, nx: int, ny: int, *, seed: int, profile: Callable, sca
     use_pos, use_scale = _active(position_random), _active(scale_random)
     use_rot = _active(rotation) or _active(rotation_random)
     use_lum, use_mask, use_spec = _active(luminance_random), _active(mask_random), _active(spec_random)
-    if own_cell and not (rotated or use_pos or use_scale or use_mask or use_spec or _active(rotation_random)):
+    if grid_mask.invert and not (use_mask or grid_mask.checker or grid_mask.columns or grid_mask.rows):
+        grid_mask = GridMask()  # nothing masked: nothing to invert
+    if own_cell and not (rotated or use_pos or use_scale or use_mask or grid_mask.active or use_spec
+                         or _active(rotation_random)):
         mx, my, per_element = 1, 1, False
 
     # separable coordinates: rows depend on v only, so row quantities are (.., H, 1)
@@ -423,7 +460,7 @@ def tile_field(size: int, nx: int, ny: int, *, seed: int, profile: Callable, sca
     cellv = _cell_values(nx, ny, rnd, pix, hx, hy, softness, position_random, scale_random, rotation,
                          rotation_random, luminance_random, mask_random, spec, spec_random, cr,
                          use_pos=use_pos, use_scale=use_scale, use_rot=use_rot, use_lum=use_lum,
-                         use_mask=use_mask, use_spec=use_spec)
+                         use_mask=use_mask, use_spec=use_spec, grid_mask=grid_mask)
     cellv = {k: v.reshape(v.shape[0], ny, nx) for k, v in cellv.items()}
     hx_e, hy_e = hx.clamp_min(1e-6), hy.clamp_min(1e-6)
     shape = _CellShape(profile, size, nx, use_pos, use_scale, use_rot, use_spec, hx_e, hy_e,

@@ -14,6 +14,7 @@ from .common import param4d, pixel_grid, to_gray
 from .pattern_shapes import (
     SHAPES,
     TAU,
+    GridMask,
     aa_coverage,
     check_enum,
     check_int,
@@ -77,17 +78,23 @@ def _tile_generator(where: str, image, args: dict):
     ny = check_int(args["y_amount"], f"{where}.y_amount", 1, 256)
     profile = _pattern_profile(args["pattern"], image, where)
     field = {k: args[k] for k in _TILE_FIELD_ARGS if k in args}
-    return tile_field(args["size"], nx, ny, profile=profile, own_cell=_monotone(args["pattern"]), **field)
+    grid_mask = GridMask(checker=bool(args.get("checker_mask")), columns=bool(args.get("horizontal_mask")),
+                         rows=bool(args.get("vertical_mask")), invert=bool(args.get("invert_mask")))
+    return tile_field(args["size"], nx, ny, profile=profile, own_cell=_monotone(args["pattern"]),
+                      grid_mask=grid_mask, **field)
 
 
 def tile_pattern(pattern_input_1=None, *, x_amount: int = 10, y_amount: int = 10, pattern: int = 1,
                  pattern_specific=0.2, scale=1.0, size_xy=(1.0, 1.0), interstice=(0.0, 0.0), offset=0.0,
                  position_random=0.0, scale_random=0.0, rotation=0.0, rotation_random=0.0, luminance_random=0.0,
-                 mask_random=0.0, softness=0.0, size: int = 512, seed: int = 0, device=None,
-                 dtype=torch.float32) -> torch.Tensor:
+                 mask_random=0.0, softness=0.0, checker_mask: bool = False, horizontal_mask: bool = False,
+                 vertical_mask: bool = False, invert_mask: bool = False, size: int = 512, seed: int = 0,
+                 device=None, dtype=torch.float32) -> torch.Tensor:
     """Tile Generator: an ``x_amount`` × ``y_amount`` grid of one pattern (``TILE_PATTERNS``;
     0 reads ``pattern_input_1``), every alternate row offset by ``offset`` cells, with per-tile
-    random position, scale, rotation, luminance and masking (see ``tile_field``)."""
+    random position, scale, rotation, luminance and masking (see ``tile_field``); the mask
+    switches hide every other tile (checker), column (horizontal) or row (vertical), or with
+    ``invert_mask`` show only what the masks hide (``GridMask``)."""
     out, _ = _tile_generator("tile_generator", pattern_input_1, locals())
     return out
 
@@ -95,7 +102,9 @@ def tile_pattern(pattern_input_1=None, *, x_amount: int = 10, y_amount: int = 10
 def tile_pattern_color(pattern_input_1=None, *, x_amount: int = 10, y_amount: int = 10, pattern: int = 1,
                        pattern_specific=0.2, scale=1.0, size_xy=(1.0, 1.0), interstice=(0.0, 0.0), offset=0.0,
                        position_random=0.0, scale_random=0.0, rotation=0.0, rotation_random=0.0,
-                       luminance_random=0.0, mask_random=0.0, softness=0.0, color_random=1.0,
+                       luminance_random=0.0, mask_random=0.0, softness=0.0, checker_mask: bool = False,
+                       horizontal_mask: bool = False, vertical_mask: bool = False, invert_mask: bool = False,
+                       color_random=1.0,
                        pattern_color=(1.0, 1.0, 1.0, 1.0), background_color=(0.0, 0.0, 0.0, 1.0),
                        size: int = 512, seed: int = 0, device=None, dtype=torch.float32) -> torch.Tensor:
     """Tile Generator Color: the tile layout of ``tile_pattern``; each tile takes

@@ -25,7 +25,11 @@ def _layout(pattern=8, scale=1.0):
         Param("rotation_random", 0.0, 0.0, 1.0, doc="turns of random spread"),
         Param("luminance_random", 0.0, 0.0, 1.0),
         Param("mask_random", 0.0, 0.0, 1.0, doc="fraction of tiles hidden"),
-        Param("softness", 0.0, 0.0, 1.0, doc="edge softness, fraction of the half size"))
+        Param("softness", 0.0, 0.0, 1.0, doc="edge softness, fraction of the half size"),
+        Param("checker_mask", False, kind="bool", doc="hides every other tile"),
+        Param("horizontal_mask", False, kind="bool", doc="hides every other column"),
+        Param("vertical_mask", False, kind="bool", doc="hides every other row"),
+        Param("invert_mask", False, kind="bool", doc="shows only what the masks (random mask included) hide"))
 
 
 register(NodeSpec(
