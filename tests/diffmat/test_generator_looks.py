@@ -150,3 +150,15 @@ def test_tile_generator_default_brick_has_a_narrow_bevel():
     t = F.tile_pattern(pattern=8, size=128, seed=0)
     assert (t > 0.99).float().mean().item() > 0.7
     assert t[0, 0, 6, :].min().item() < 0.2            # the ramp still reaches down at the tile borders
+
+
+def test_anisotropic_noise_rotate_turns_the_streaks_upright():
+    """Production files set Anisotropic Noise's ``rotate`` on one of two otherwise equal noises (a
+    crossed scrim); it turns the horizontal streaks a quarter turn."""
+    flat = F.noise_anisotropic(size=64, seed=2)
+    upright = F.noise_anisotropic(size=64, seed=2, rotate=True)
+    assert torch.equal(upright, flat.transpose(-1, -2))
+    across = (upright[..., :, 1:] - upright[..., :, :-1]).abs().mean()
+    down = (upright[..., 1:, :] - upright[..., :-1, :]).abs().mean()
+    assert across > 3 * down
+

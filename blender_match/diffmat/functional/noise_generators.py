@@ -236,11 +236,13 @@ def noise_fractal_sum_base(*, roughness=0.5, min_level: int = 1, max_level: int 
 
 
 def noise_anisotropic(*, x_amount: int = 8, y_amount: int = 128, smoothness=0.5, interpolation: bool = True,
-                      size: int = 512, seed: int = 0, device=None, dtype=torch.float32) -> torch.Tensor:
+                      rotate: bool = False, size: int = 512, seed: int = 0, device=None,
+                      dtype=torch.float32) -> torch.Tensor:
     """Anisotropic Noise: random values on an x_amount x y_amount lattice, interpolated smoothly
     along x (long horizontal streaks when y_amount > x_amount). ``smoothness`` blends the hard-edged
     version (each streak a constant band down y) with the smoothly interpolated one;
-    ``interpolation`` off uses linear instead of cubic interpolation."""
+    ``interpolation`` off uses linear instead of cubic interpolation; ``rotate`` turns the result a
+    quarter turn (vertical streaks)."""
     interp = "cubic" if interpolation else "linear"
     smooth = lattice_noise((x_amount, y_amount), size, seed=seed, key="anisotropic", kind="value", interp=interp,
                            device=device, dtype=dtype)
@@ -248,7 +250,8 @@ def noise_anisotropic(*, x_amount: int = 8, y_amount: int = 128, smoothness=0.5,
     sharp = _rows_nearest(x_amount, y_amount, size, seed, interp, device, dtype)
     t = param4d(smoothness).to(device=device, dtype=dtype)
     z = ((1 - t) * sharp + t * smooth) / torch.sqrt((1 - t) ** 2 + t ** 2)
-    return squash(z, 0.5)
+    out = squash(z, 0.5)
+    return out.transpose(-1, -2) if rotate else out
 
 
 def _rows_nearest(nx, ny, size, seed, interp, device, dtype):

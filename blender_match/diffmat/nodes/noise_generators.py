@@ -54,5 +54,6 @@ register(NodeSpec(
     params=(Param("x_amount", 8, 1, 256, kind="int", doc="lattice cells across"),
             Param("y_amount", 128, 1, 256, kind="int", doc="lattice cells down"),
             Param("smoothness", 0.5, 0.0, 1.0, doc="hard bands (0) to smooth interpolation down (1)"),
-            Param("interpolation", True, kind="bool", doc="cubic (on) or linear (off) interpolation")),
+            Param("interpolation", True, kind="bool", doc="cubic (on) or linear (off) interpolation"),
+            Param("rotate", False, kind="bool", doc="a quarter turn: vertical streaks")),
     context=CONTEXT, doc="Anisotropic Noise: streaks from a stretched random lattice."))
