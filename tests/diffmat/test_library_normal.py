@@ -116,22 +116,46 @@ def test_edge_detect_draws_a_full_line_for_a_small_step():
     faint = F.edge_detect(square() * 0.15 + 0.3, edge_width=2.0, edge_roundness=0.0)
     torch.testing.assert_close(faint, full, atol=0.05, rtol=0)
     assert faint[0, 0, 16, 8] > 0.9
-    below = F.edge_detect(square() * 0.15 + 0.3, edge_width=2.0, edge_roundness=0.0, tolerance=0.2)
-    assert float(below.max()) < 0.01  # a step under the tolerance is no edge
+    # the tolerance (0-1) moves a threshold of about 0.002 at most (the MATch reference): a step of
+    # 0.15 is an edge at tolerance 1 too (it was read as a step size, which erased every line)
+    strict = F.edge_detect(square() * 0.15 + 0.3, edge_width=2.0, edge_roundness=0.0, tolerance=1.0)
+    assert strict[0, 0, 16, 8] > 0.9
+    flat = F.edge_detect(torch.full((1, 1, 32, 32), 0.4), edge_width=2.0, edge_roundness=0.0, tolerance=1.0)
+    assert float(flat.max()) < 0.01
 
 
-def test_bevel_ramps_inwards_and_outwards():
+def test_bevel_grows_outwards_for_a_positive_distance_and_bevels_inwards_for_a_negative_one():
+    """The MATch reference builds Bevel from the Distance node: a positive distance d keeps the
+    shape at 1 and ramps down outside it over d x 128 pixels of a 256-px image, a negative one
+    ramps up inside it from the contour."""
     size = 64
     x = square(size, 16, 48)
-    h, n = F.bevel(x, distance=0.5)                 # width 0.1 image = 6.4 px
-    assert h[0, 0, 32, 32] > 0.99 and h[0, 0, 0, 0] < 0.01
+    h, n = F.bevel(x, distance=0.1)                 # 12.8 reference px = 3.2 px at 64
     row = h[0, 0, 32]
-    assert 0.1 < row[18] < 0.6 and row[18] < row[20] < row[23]          # rising ramp inside
+    assert row[20] > 0.99 and row[16] > 0.99 and row[4] < 0.01          # the shape, then nothing
+    assert 0.1 < row[14] < 0.9 and row[15] > row[14] > row[13]          # falling ramp outside
     assert n.shape[1] == 4
     torch.testing.assert_close(n[0, :3, 32, 32], torch.tensor([0.5, 0.5, 1.0]), atol=1e-3, rtol=0)
-    assert n[0, 0, 32, 18] < 0.45                  # left rim faces left (-x)
-    out, _ = F.bevel(x, distance=-0.5)
-    assert out[0, 0, 32, 20] > 0.99 and 0.1 < out[0, 0, 32, 13] < 0.9 and out[0, 0, 32, 4] < 0.01
+    inside, _ = F.bevel(x, distance=-0.1)
+    row = inside[0, 0, 32]
+    assert row[32] > 0.99 and row[12] < 0.01 and row[16] < 0.5          # nothing outside, low at the rim
+    assert 0.1 < row[17] < 0.9 and row[16] < row[17] < row[18]          # rising ramp inside
+    same, _ = F.bevel(x, distance=0.0)
+    torch.testing.assert_close(same, x)
+
+
+def test_bevel_keeps_a_thin_line():
+    """A one-pixel line bevelled outwards is a ridge as wide as the bevel (the blurred estimate of
+    the contour it replaced lost lines thinner than the bevel: a production leather's relief was
+    flat)."""
+    x = torch.zeros(1, 1, 64, 64)
+    x[..., 32, :] = 1.0
+    h, _ = F.bevel(x, distance=0.04)               # 5.1 reference px = 1.3 px at 64
+    assert h[0, 0, 32].min() > 0.99
+    assert 0.0 < h[0, 0, 31].mean() < 1.0 and h[0, 0, 28].max() < 0.01
+    d = torch.tensor([0.04], requires_grad=True)
+    F.bevel(x, distance=d)[0].sum().backward()
+    assert d.grad is not None and d.grad.item() > 0
 
 
 def test_pbr_conversion_known_values():

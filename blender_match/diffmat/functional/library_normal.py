@@ -26,6 +26,7 @@ from .common import (
     sample_wrap,
     to_gray,
 )
+from .distance import distance as distance_fade
 from .library_adjust import linear_to_srgb, srgb_to_linear
 
 __all__ = ["normal_combine", "normal_blend", "normal_normalise", "normal_to_height", "curvature",
@@ -273,6 +274,10 @@ def ambient_occlusion(source: torch.Tensor, *, height_depth=0.15, spreading=0.15
 
 
 EDGE_GATE = (0.02, 0.05)  # steps this far above the tolerance start to draw a line, and draw a full one
+# the step the tolerance 1 adds to the gate: the MATch reference draws a full line where the
+# difference of the image and its 1-px blur passes (tolerance + 0.2) x 0.01 of 0.05, and that
+# difference is about 0.31 of the step
+EDGE_TOLERANCE_STEP = 0.05 * 0.01 / 0.31
 
 
 def edge_detect(input: torch.Tensor, *, edge_width=2.0, edge_roundness=4.0, tolerance=0.0,
@@ -280,14 +285,15 @@ def edge_detect(input: torch.Tensor, *, edge_width=2.0, edge_roundness=4.0, tole
     """Edge Detect: white lines along the contours of an image, as full a line for a small step
     across a contour as for a large one.
 
-    Substance draws a line wherever the luminance steps by more than ``tolerance`` (the MATch
-    reference: a thresholded difference between the image and its 1-px blur), so tiles or cells
-    of random grey get lines as white as a black and white mask does. Here: the gradient magnitude
+    Substance draws a line wherever the luminance steps at all (the MATch reference: the
+    difference between the image and its 1-px blur through a Levels window that ``tolerance``,
+    0 to 1, moves by steps of about 0.002 at most), so tiles or cells of random grey get lines as
+    white as a black and white mask does. Here: the gradient magnitude
     (central differences) of the image blurred by sigma = ``edge_width`` / 2 (256-px pixels),
     normalised so that a step peaks at its height, is divided by its local peak (the largest
     value within two sigmas), which gives every contour the profile of a unit step; contours whose
-    step is under ``tolerance`` are gated out (``EDGE_GATE``: from a step 0.02 above it, full at
-    0.05, clear of the blur's numerical noise); the profile is
+    step is under ``tolerance`` x ``EDGE_TOLERANCE_STEP`` are gated out (``EDGE_GATE``: from a step
+    0.02 above it, full at 0.05, clear of the blur's numerical noise); the profile is
     gained x 2 and rounded by a blur of ``edge_roundness`` / 2 pixels; ``invert`` gives black lines
     on white."""
     x = to_gray(input)
@@ -303,35 +309,33 @@ def edge_detect(input: torch.Tensor, *, edge_width=2.0, edge_roundness=4.0, tole
                                           (1, reach), stride=1)
     peak = torch.nn.functional.max_pool2d(torch.nn.functional.pad(peak, (0, 0, half, half), mode="circular"),
                                           (reach, 1), stride=1)
-    tol = param4d(tolerance, x)
+    tol = param4d(tolerance, x) * EDGE_TOLERANCE_STEP
     gate = ((peak - tol - EDGE_GATE[0]) / (EDGE_GATE[1] - EDGE_GATE[0])).clamp(0.0, 1.0)
     out = (e / (peak + 1e-6) * gate * 2.0).clamp(0.0, 1.0)
     out = gaussian_blur(out, param4d(edge_roundness, x).abs() * 0.5 * PX).clamp(0.0, 1.0)
     return 1.0 - out if check_bool(invert, "edge_detect.invert") else out
 
 
-BEVEL_WIDTH = 0.2          # image widths of bevel at distance 1
+BEVEL_REACH = 128.0        # 256-px pixels of bevel at distance 1 (the MATch reference)
 
 
 def bevel(input: torch.Tensor, *, distance=0.5, smoothing=0.0, normal_intensity=10.0, normal_format: int = 0):
-    """Bevel: a linear ramp around the shapes of a (mostly two-tone) mask.
-
-    The signed distance to the mask's 0.5 contour is estimated to first order,
-    (b - 0.5) / |grad b| with b the mask blurred by sigma = width (which keeps the estimate close
-    to linear out to ~0.8 width), and ramped over the bevel width ``distance`` x 0.2 image widths:
-    positive bevels inwards (height 0 at the contour
-    rising to 1 inside), negative outwards (1 at the contour falling to 0 outside). ``smoothing``
-    blurs the height (x 2 pixels of 256). Returns (height, normal), the normal computed from the
-    height with ``normal_intensity``."""
+    """Bevel: a linear ramp around the shapes of a mask (its pixels above 0.5), as the public MATch
+    reference builds it from Substance's Distance node: a positive ``distance`` grows the shapes
+    outwards (1 on the mask, falling to 0 at ``distance`` x ``BEVEL_REACH`` pixels of a 256-px
+    image outside it), a negative one bevels them inwards (0 at the contour, rising to 1 that far
+    inside), 0 returns the input. The mask is thresholded, so no gradient reaches the input (as
+    ``distance``); the height is differentiable in ``distance``. ``smoothing`` blurs the height
+    (x 2 pixels of 256). Returns (height, normal), the normal computed from the height with
+    ``normal_intensity``. Thin shapes keep their bevel: a line one pixel wide bevelled outwards is
+    a ridge as wide as the bevel."""
     _check_format(normal_format, "bevel")
     x = to_gray(input)
     d = param4d(distance, x)
-    width = torch.sqrt((d * BEVEL_WIDTH) ** 2 + (1.0 / x.shape[-1]) ** 2)
-    b = gaussian_blur(x, width)
-    gu, gv = gradient_wrap(b)
-    sd = (b - 0.5) / torch.sqrt(gu * gu + gv * gv + 1.0)
-    outward = (d < 0).to(x.dtype)
-    h = (sd / width + outward).clamp(0.0, 1.0)
+    reach = d.abs() * BEVEL_REACH
+    outward = distance_fade(x, distance=reach)
+    inward = 1.0 - distance_fade(1.0 - x, distance=reach)
+    h = torch.where(d > 0, outward, torch.where(d < 0, inward, x))
     h = gaussian_blur(h, param4d(smoothing, x).abs() * 2.0 * PX).clamp(0.0, 1.0)
     return h, height_to_normal_map(h, normal_intensity, normal_format)
 
