@@ -103,24 +103,29 @@ def test_ambient_occlusion_2_flat_is_one_and_pit_is_dark():
 
 
 def test_edge_detect_finds_square_contour():
-    out = F.edge_detect(square(), edge_width=2.0, edge_roundness=0.0)
+    """Black lines on white unless inverted: the MATch reference's Edge Detect ends by inverting
+    the lines it found (its ``invert`` inverts them back)."""
+    out = F.edge_detect(square(), edge_width=2.0, edge_roundness=0.0, invert=True)
     assert out[0, 0, 16, 8] > 0.9 and out[0, 0, 8, 16] > 0.9           # on the contour
     assert out[0, 0, 16, 16] < 0.01 and out[0, 0, 0, 0] < 0.01         # inside and outside
-    inv = F.edge_detect(square(), edge_width=2.0, edge_roundness=0.0, invert=True)
-    torch.testing.assert_close(inv, 1 - out)
+    plain = F.edge_detect(square(), edge_width=2.0, edge_roundness=0.0)
+    torch.testing.assert_close(plain, 1 - out)
+    assert plain[0, 0, 16, 8] < 0.1 and plain[0, 0, 0, 0] > 0.99
 
 
 def test_edge_detect_draws_a_full_line_for_a_small_step():
     """As Substance does: tiles of random grey get lines as white as a black and white mask."""
-    full = F.edge_detect(square(), edge_width=2.0, edge_roundness=0.0)
-    faint = F.edge_detect(square() * 0.15 + 0.3, edge_width=2.0, edge_roundness=0.0)
+    full = F.edge_detect(square(), edge_width=2.0, edge_roundness=0.0, invert=True)
+    faint = F.edge_detect(square() * 0.15 + 0.3, edge_width=2.0, edge_roundness=0.0, invert=True)
     torch.testing.assert_close(faint, full, atol=0.05, rtol=0)
     assert faint[0, 0, 16, 8] > 0.9
     # the tolerance (0-1) moves a threshold of about 0.002 at most (the MATch reference): a step of
     # 0.15 is an edge at tolerance 1 too (it was read as a step size, which erased every line)
-    strict = F.edge_detect(square() * 0.15 + 0.3, edge_width=2.0, edge_roundness=0.0, tolerance=1.0)
+    strict = F.edge_detect(square() * 0.15 + 0.3, edge_width=2.0, edge_roundness=0.0, tolerance=1.0,
+                           invert=True)
     assert strict[0, 0, 16, 8] > 0.9
-    flat = F.edge_detect(torch.full((1, 1, 32, 32), 0.4), edge_width=2.0, edge_roundness=0.0, tolerance=1.0)
+    flat = F.edge_detect(torch.full((1, 1, 32, 32), 0.4), edge_width=2.0, edge_roundness=0.0, tolerance=1.0,
+                         invert=True)
     assert float(flat.max()) < 0.01
 
 

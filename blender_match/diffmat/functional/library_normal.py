@@ -294,8 +294,9 @@ def edge_detect(input: torch.Tensor, *, edge_width=2.0, edge_roundness=4.0, tole
     value within two sigmas), which gives every contour the profile of a unit step; contours whose
     step is under ``tolerance`` x ``EDGE_TOLERANCE_STEP`` are gated out (``EDGE_GATE``: from a step
     0.02 above it, full at 0.05, clear of the blur's numerical noise); the profile is
-    gained x 2 and rounded by a blur of ``edge_roundness`` / 2 pixels; ``invert`` gives black lines
-    on white."""
+    gained x 2 and rounded by a blur of ``edge_roundness`` / 2 pixels. The result is black lines
+    on white, as the reference's graph ends with an inversion; ``invert`` gives white lines on
+    black."""
     x = to_gray(input)
     size = x.shape[-1]
     sigma = torch.sqrt((param4d(edge_width, x) * 0.5 * PX) ** 2 + (0.5 / size) ** 2)
@@ -313,7 +314,7 @@ def edge_detect(input: torch.Tensor, *, edge_width=2.0, edge_roundness=4.0, tole
     gate = ((peak - tol - EDGE_GATE[0]) / (EDGE_GATE[1] - EDGE_GATE[0])).clamp(0.0, 1.0)
     out = (e / (peak + 1e-6) * gate * 2.0).clamp(0.0, 1.0)
     out = gaussian_blur(out, param4d(edge_roundness, x).abs() * 0.5 * PX).clamp(0.0, 1.0)
-    return 1.0 - out if check_bool(invert, "edge_detect.invert") else out
+    return out if check_bool(invert, "edge_detect.invert") else 1.0 - out
 
 
 BEVEL_REACH = 128.0        # 256-px pixels of bevel at distance 1 (the MATch reference)

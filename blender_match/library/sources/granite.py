@@ -104,7 +104,7 @@ def build() -> SbsGraph:
           blendingmode=ADD_SUB, opacitymult=0.4)
 
     # ---- height -------------------------------------------------------------------------------
-    g.add("boundaries", "edge_detect", {"input": "coarse_warp"})
+    g.add("boundaries", "edge_detect", {"input": "coarse_warp"}, invert=True)
     g.add("pit_noise", "white_noise", seed=57)
     g.add("pits", "histogram_scan", {"input_1": "pit_noise"}, position=0.015, contrast=0.8,
           invert_position=True)

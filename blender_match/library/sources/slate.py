@@ -91,7 +91,8 @@ def build() -> SbsGraph:
     g.add("ao", "ambient_occlusion_2", {"source": "height"}, height_depth=0.15, spreading=0.08)
 
     # ---- step edges ---------------------------------------------------------------------------
-    g.add("edges", "edge_detect", {"input": "frayed"}, edge_width=1.5, edge_roundness=1.0, tolerance=0.02)
+    g.add("edges", "edge_detect", {"input": "frayed"}, edge_width=1.5, edge_roundness=1.0, tolerance=0.02,
+          invert=True)
     g.add("edges_soft", "blur", {"input1": "edges"}, intensity=0.6)
 
     # ---- colour -------------------------------------------------------------------------------
