@@ -282,8 +282,8 @@ EDGE_TOLERANCE_STEP = 0.05 * 0.01 / 0.31
 
 def edge_detect(input: torch.Tensor, *, edge_width=2.0, edge_roundness=4.0, tolerance=0.0,
                 invert: bool = False):
-    """Edge Detect: white lines along the contours of an image, as full a line for a small step
-    across a contour as for a large one.
+    """Edge Detect: lines along the contours of an image (black on white; white on black when
+    ``invert``), as full a line for a small step across a contour as for a large one.
 
     Substance draws a line wherever the luminance steps at all (the MATch reference: the
     difference between the image and its 1-px blur through a Levels window that ``tolerance``,
@@ -294,9 +294,8 @@ def edge_detect(input: torch.Tensor, *, edge_width=2.0, edge_roundness=4.0, tole
     value within two sigmas), which gives every contour the profile of a unit step; contours whose
     step is under ``tolerance`` x ``EDGE_TOLERANCE_STEP`` are gated out (``EDGE_GATE``: from a step
     0.02 above it, full at 0.05, clear of the blur's numerical noise); the profile is
-    gained x 2 and rounded by a blur of ``edge_roundness`` / 2 pixels. The result is black lines
-    on white, as the reference's graph ends with an inversion; ``invert`` gives white lines on
-    black."""
+    gained x 2 and rounded by a blur of ``edge_roundness`` / 2 pixels, then inverted, as the
+    reference's graph ends with an inversion whatever its parameters."""
     x = to_gray(input)
     size = x.shape[-1]
     sigma = torch.sqrt((param4d(edge_width, x) * 0.5 * PX) ** 2 + (0.5 / size) ** 2)
@@ -325,8 +324,8 @@ def bevel(input: torch.Tensor, *, distance=0.5, smoothing=0.0, normal_intensity=
     reference builds it from Substance's Distance node: a positive ``distance`` grows the shapes
     outwards (1 on the mask, falling to 0 at ``distance`` x ``BEVEL_REACH`` pixels of a 256-px
     image outside it), a negative one bevels them inwards (0 at the contour, rising to 1 that far
-    inside), 0 returns the input. The mask is thresholded, so no gradient reaches the input (as
-    ``distance``); the height is differentiable in ``distance``. ``smoothing`` blurs the height
+    inside), 0 returns the input. The mask is thresholded, so no gradient reaches the input (as in
+    the Distance node); the height is differentiable in ``distance``. ``smoothing`` blurs the height
     (x 2 pixels of 256). Returns (height, normal), the normal computed from the height with
     ``normal_intensity``. Thin shapes keep their bevel: a line one pixel wide bevelled outwards is
     a ridge as wide as the bevel."""
