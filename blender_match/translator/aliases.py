@@ -18,10 +18,12 @@ identifier against a spec, first match wins:
 Value conversions (``convert_value``) for parameters whose meaning differs between library
 versions: a legacy ``Disorder`` slider runs 0..100 where the specs' ``disorder`` is 0..1 (a value
 above 1 is divided by 100); ``gradient_linear_*``'s ``rotation`` is an integer index of quarter
-turns in the library and turns in the specs.
+turns in the library and turns in the specs; the Scratches Generator's ``Spline Number`` counts
+every scratch, where our ``amount`` is the side of a lattice holding two a cell.
 """
 from __future__ import annotations
 
+import math
 import re
 
 # node (spec name) -> {normalised file identifier: spec parameter, or a tuple of spec parameters
@@ -43,7 +45,11 @@ PARAM_ALIASES: dict[str, dict[str, str | tuple[str, ...]]] = {
     },
     "shape": {"size": "scale", "rotation": "rotation_45", "variation": "pattern_specific"},
     "brick_generator": {"bricks": ("x_amount", "y_amount"), "gap": "interstice"},
-    "scratches_generator": {"scratches_amount": "amount"},
+    # the current Scratches Generator's "Spline" identifiers (its documentation): a count of all
+    # the scratches (converted to our cells a side, ``convert_value``), a rotation and its random
+    # spread in turns, a random length spread; Spline Scale and Width have units we do not know
+    "scratches_generator": {"scratches_amount": "amount", "spline_number": "amount", "spline_rotation": "angle",
+                            "spline_rotation_random": "angle_random", "spline_scale_random": "length_random"},
     "mesh_1": {"mesh_width": "width"},
     "stripes": {"stripes": "number"},
     # legacy noises: "Distance" is the zoom / scale slider (cells: 10-30 in production files)
@@ -135,6 +141,8 @@ def convert_value(spec_name: str, param: str, identifier: str, value):
         return value / 100.0
     if param == "rotation" and spec_name in QUARTER_TURN_ROTATION and isinstance(value, int):
         return (value % 4) * 0.25
+    if spec_name == "scratches_generator" and norm(identifier) == "spline_number" and isinstance(value, (int, float)):
+        return max(1, round(math.sqrt(value / 2.0)))   # two scratches a cell of an amount x amount lattice
     return value
 
 

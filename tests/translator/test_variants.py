@@ -60,6 +60,11 @@ def test_normalisation_and_resolution_rules():
     assert aliases.convert_value("crystal_1", "disorder", "Disorder", 50.0) == 0.5
     assert aliases.convert_value("crystal_1", "disorder", "disorder", 0.3) == 0.3
     assert aliases.convert_value("gradient_linear_1", "rotation", "rotation", 1) == 0.25
+    scratches = get_spec("scratches_generator")
+    assert aliases.resolve_param(scratches, "spline_rotation") == [("angle", None)]
+    assert aliases.resolve_param(scratches, "Spline_Number") == [("amount", None)]
+    assert aliases.convert_value("scratches_generator", "amount", "spline_number", 26) == 4   # 2 x 4² ≈ 26
+    assert aliases.convert_value("scratches_generator", "amount", "scratches_amount", 26) == 26
     assert aliases.convert_value("gradient_linear_1", "rotation", "rotation", 0.5) == 0.5
 
 
