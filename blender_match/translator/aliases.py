@@ -28,21 +28,21 @@ import re
 
 # node (spec name) -> {normalised file identifier: spec parameter, or a tuple of spec parameters
 # taking the file value's components in order}
-TILE_GENERATOR_ALIASES: dict[str, str | tuple[str, ...]] = {
-    "pattern_type": "pattern", "pattern_size": "size_xy", "size": "size_xy", "position_offset": "offset",
+# the tile layouts' identifiers that Tile Sampler and the Tile Generators share
+TILE_LAYOUT_ALIASES: dict[str, str | tuple[str, ...]] = {
+    "pattern_size": "size_xy", "size": "size_xy", "position_offset": "offset",
     "random_mask": "mask_random", "nb_x": "x_amount", "nb_y": "y_amount",
-    "luminance_variation": "luminance_random", "luminance_variation_contrast": "luminance_random",
+    "luminance_variation": "luminance_random",
+}
+TILE_GENERATOR_ALIASES: dict[str, str | tuple[str, ...]] = {
+    **TILE_LAYOUT_ALIASES, "pattern_type": "pattern", "luminance_variation_contrast": "luminance_random",
     "pattern_size_random": "scale_random", "randommask": "mask_random",
 }
 PARAM_ALIASES: dict[str, dict[str, str | tuple[str, ...]]] = {
     # pattern generators: library identifiers (current and older library versions)
     "tile_generator": TILE_GENERATOR_ALIASES,
     "tile_generator_color": {**TILE_GENERATOR_ALIASES, "color_variation": "color_random", "color": "pattern_color"},
-    "tile_sampler": {
-        "pattern_size": "size_xy", "size": "size_xy", "position_offset": "offset",
-        "random_mask": "mask_random", "nb_x": "x_amount", "nb_y": "y_amount",
-        "luminance_variation": "luminance_random",
-    },
+    "tile_sampler": TILE_LAYOUT_ALIASES,
     "shape": {"size": "scale", "rotation": "rotation_45", "variation": "pattern_specific"},
     "brick_generator": {"bricks": ("x_amount", "y_amount"), "gap": "interstice"},
     # the current Scratches Generator's "Spline" identifiers (its documentation): a count of all
