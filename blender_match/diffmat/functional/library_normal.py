@@ -333,9 +333,11 @@ def bevel(input: torch.Tensor, *, distance=0.5, smoothing=0.0, normal_intensity=
     x = to_gray(input)
     d = param4d(distance, x)
     reach = d.abs() * BEVEL_REACH
-    outward = distance_fade(x, distance=reach)
-    inward = 1.0 - distance_fade(1.0 - x, distance=reach)
-    h = torch.where(d > 0, outward, torch.where(d < 0, inward, x))
+    h = x
+    if bool((d > 0).any()):   # each distance transform only when some batch item needs it
+        h = torch.where(d > 0, distance_fade(x, distance=reach), h)
+    if bool((d < 0).any()):
+        h = torch.where(d < 0, 1.0 - distance_fade(1.0 - x, distance=reach), h)
     h = gaussian_blur(h, param4d(smoothing, x).abs() * 2.0 * PX).clamp(0.0, 1.0)
     return h, height_to_normal_map(h, normal_intensity, normal_format)
 
