@@ -10,6 +10,9 @@ from .expressions import Expr, const, gray4
 
 # Substance's blending-mode codes (the blend node's ``blendingmode``)
 COPY, ADD, SUBTRACT, MULTIPLY, ADD_SUB, MAX, MIN, SWITCH, DIVIDE, OVERLAY, SCREEN, SOFT_LIGHT = range(12)
+# the Tile Generator's own Blending Mode code for Max: the library's tile layouts were authored
+# with overlapping tiles keeping the highest (Substance's default is Add)
+TILES_MAX = 2
 
 
 def gradient_keys(stops) -> dict:

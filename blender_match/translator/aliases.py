@@ -38,18 +38,23 @@ TILE_GENERATOR_ALIASES: dict[str, str | tuple[str, ...]] = {
     **TILE_LAYOUT_ALIASES, "pattern_type": "pattern", "luminance_variation_contrast": "luminance_random",
     "pattern_size_random": "scale_random", "randommask": "mask_random",
 }
+# the current Scratches Generator's "Spline" identifiers (its documentation; the Normal version
+# shares them): a count of all the scratches (converted to our cells a side, ``convert_value``), a
+# rotation and its random spread in turns, a random length spread; Spline Scale and Width have
+# units we do not know
+SCRATCHES = ("scratches_generator", "scratches_generator_normal")
+SCRATCHES_ALIASES: dict[str, str | tuple[str, ...]] = {
+    "scratches_amount": "amount", "spline_number": "amount", "spline_rotation": "angle",
+    "spline_rotation_random": "angle_random", "spline_scale_random": "length_random",
+}
 PARAM_ALIASES: dict[str, dict[str, str | tuple[str, ...]]] = {
     # pattern generators: library identifiers (current and older library versions)
-    "tile_generator": TILE_GENERATOR_ALIASES,
+    "tile_generator": {**TILE_GENERATOR_ALIASES, "background_color": "background_level"},
     "tile_generator_color": {**TILE_GENERATOR_ALIASES, "color_variation": "color_random", "color": "pattern_color"},
     "tile_sampler": TILE_LAYOUT_ALIASES,
     "shape": {"size": "scale", "rotation": "rotation_45", "variation": "pattern_specific"},
     "brick_generator": {"bricks": ("x_amount", "y_amount"), "gap": "interstice"},
-    # the current Scratches Generator's "Spline" identifiers (its documentation): a count of all
-    # the scratches (converted to our cells a side, ``convert_value``), a rotation and its random
-    # spread in turns, a random length spread; Spline Scale and Width have units we do not know
-    "scratches_generator": {"scratches_amount": "amount", "spline_number": "amount", "spline_rotation": "angle",
-                            "spline_rotation_random": "angle_random", "spline_scale_random": "length_random"},
+    **{name: SCRATCHES_ALIASES for name in SCRATCHES},
     "mesh_1": {"mesh_width": "width"},
     "stripes": {"stripes": "number"},
     # legacy noises: "Distance" is the zoom / scale slider (cells: 10-30 in production files)
@@ -141,7 +146,7 @@ def convert_value(spec_name: str, param: str, identifier: str, value):
         return value / 100.0
     if param == "rotation" and spec_name in QUARTER_TURN_ROTATION and isinstance(value, int):
         return (value % 4) * 0.25
-    if spec_name == "scratches_generator" and norm(identifier) == "spline_number" and isinstance(value, (int, float)):
+    if spec_name in SCRATCHES and norm(identifier) == "spline_number" and isinstance(value, (int, float)):
         return max(1, round(math.sqrt(value / 2.0)))   # two scratches a cell of an amount x amount lattice
     return value
 

@@ -254,3 +254,17 @@ def test_fit_components_fills_missing_ones_from_the_default():
 def test_fit_components_without_a_default_refuses_missing_components():
     with pytest.raises(DiffMatError):
         fit_components(torch.tensor([0.1, 0.2, 0.3]), 4, "p")
+
+
+def test_pbr_metal_reflectance_gives_each_metals_published_base_colour():
+    """PBR Metal Reflectance: the metals in the documentation's order, each its measured F0 colour
+    sRGB-encoded (gold 1.000 0.766 0.336 linear)."""
+    def colour(k):
+        return F.metal_reflectance(metal_color=k, size=4)[0, :, 0, 0]
+    gold, silver, copper = colour(0), colour(1), colour(4)
+    published = F.linear_to_srgb(torch.tensor([1.0, 0.766, 0.336]).view(1, 3, 1, 1))[0, :, 0, 0]
+    torch.testing.assert_close(gold[:3], published, atol=2e-3, rtol=0)
+    assert gold[0] > gold[1] > gold[2] and copper[0] > copper[1] > copper[2]   # warm metals
+    assert silver[:3].min() > 0.95 and gold[3] == 1
+    with pytest.raises(DiffMatError):
+        F.metal_reflectance(metal_color=9)

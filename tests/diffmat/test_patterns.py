@@ -122,6 +122,31 @@ def test_tile_generator_color_has_a_colour_per_tile():
     assert out[0, :3, 0, 0].max() == 0  # background between tiles
 
 
+def test_tile_generator_blending_modes_add_by_default_max_and_add_sub():
+    """Substance's Tile Generator adds overlapping tiles by default; Max keeps the higher; Add Sub
+    adds each tile's luminance less the background, so darker tiles darken (the MATch reference
+    implementation's facts). Two squares 1.5 cells wide overlap by half a cell."""
+    common = dict(x_amount=2, y_amount=2, pattern=1, scale=1.5, global_opacity=0.4)
+    add = _render("tile_generator", **common)
+    high = _render("tile_generator", blending_mode=2, **common)
+    assert _render("tile_generator", blending_mode=1, **common).equal(add)   # the list's empty entry
+    assert (high - 0.4).abs().max() < 1e-6   # every pixel under some tile; Max keeps one tile's 0.4
+    levels = torch.tensor([0.4, 0.8, 1.0])   # one tile, two, and four (1.6 clamped)
+    counts = [int(((add - v).abs() < 1e-4).sum()) for v in levels]
+    assert all(c > 0 for c in counts) and sum(counts) > 0.95 * add.numel(), counts
+    lum = dict(x_amount=4, y_amount=4, pattern=1, scale=0.6, luminance_random=1.0, background_level=0.5)
+    over_grey = _render("tile_generator", **lum)
+    signed = _render("tile_generator", blending_mode=3, **lum)
+    assert over_grey.min() >= 0.5 - 1e-6 and signed.min() < 0.3 and signed.max() > 0.7
+    assert (signed[0, 0, 0, 0] - 0.5).abs() < 1e-6   # between the tiles: the background
+
+
+def test_tile_generator_global_opacity_scales_the_tiles():
+    full = _render("tile_generator", x_amount=4, y_amount=4, pattern=1, scale=0.7)
+    faint = _render("tile_generator", x_amount=4, y_amount=4, pattern=1, scale=0.7, global_opacity=0.25)
+    torch.testing.assert_close(faint, 0.25 * full)
+
+
 def test_tile_generator_batched_and_bad_values():
     out = F.tile_pattern(x_amount=4, y_amount=4, pattern=1, scale=torch.tensor([[0.5], [1.0]]), size=32)
     assert out.shape[0] == 2 and out[0].mean() < out[1].mean()
@@ -271,6 +296,31 @@ def test_parquet_weave_mesh_splatter_scratches_creased_basic_looks():
     cr = _render("creased")
     assert cr.std() > 0.1
 
+
+
+def test_weave_1_is_a_plain_weave_of_one_shade_repeated_tiling_times():
+    weave = _render("weave_1", tiling=4)
+    torch.testing.assert_close(weave, torch.roll(weave, S // 4, dims=-1))   # 4 repeats across
+    torch.testing.assert_close(weave, torch.roll(weave, S // 4, dims=-2))
+    assert not torch.allclose(weave, torch.roll(weave, S // 8, dims=-1))    # one thread is not a repeat
+    shaded = _render("weave_generator", tiling=4)   # the Weave Generator shades each thread at random
+    assert not torch.allclose(shaded, torch.roll(shaded, S // 4, dims=-1))
+
+
+def test_scratches_generator_normal_is_the_scratches_as_grooves():
+    params = dict(amount=4, angle=0.25, angle_random=0.0, width=0.1)
+    grooves = Node("scratches_generator_normal", {**params, "normal_intensity": 1.0})
+    normal, mask = grooves(ctx=EvalContext(size=S, seed=3))
+    torch.testing.assert_close(mask, _render("scratches_generator", seed=3, **params))
+    assert normal.shape == (1, 4, S, S) and mask.max() > 0.5
+    flat = (mask == 0) & (torch.roll(mask, 1, -1) == 0) & (torch.roll(mask, -1, -1) == 0) \
+        & (torch.roll(mask, 1, -2) == 0) & (torch.roll(mask, -1, -2) == 0)
+    torch.testing.assert_close(normal[:, :3][flat.expand(-1, 3, -1, -1)].view(3, -1).T,
+                               torch.tensor([0.5, 0.5, 1.0]).expand(int(flat.sum()), 3))
+    assert (normal[:, :2] - 0.5).abs().max() > 0.1   # the grooves' walls tilt the normal
+    gl, _ = Node("scratches_generator_normal", {**params, "normal_intensity": 1.0, "normal_format": 1})(
+        ctx=EvalContext(size=S, seed=3))
+    torch.testing.assert_close(gl[:, 1] - 0.5, -(normal[:, 1] - 0.5), atol=1e-5, rtol=0)   # green flipped
 
 
 def test_scratches_bands_match_full_evaluation_and_wrap():

@@ -129,7 +129,7 @@ def test_unknown_nodes_become_passthrough(tmp_path):
 
 
 def test_an_unsupported_normal_generator_stands_in_as_a_flat_normal(tmp_path):
-    nodes = [W.instance_node(30, "pkg:///scratches_generator_normal?dependency=5", outputs=[(31, "output", 1)]),
+    nodes = [W.instance_node(30, "pkg:///grunge_normal_dents?dependency=5", outputs=[(31, "output", 1)]),
              W.instance_node(50, "pkg:///abnormal_grunge?dependency=5", outputs=[(51, "output", 1)]),
              W.output_node(40, 100, 30, 31), W.output_node(41, 101, 50, 51)]
     doc = W.package([W.graph("N", nodes, outputs=[(100, "normal", "normal"), (101, "c", "baseColor")])],
@@ -199,6 +199,42 @@ def test_library_instances_map_by_name_with_old_outputs_and_seeds(tmp_path):
     node = next(iter(t.graph.nodes.values()))
     assert node.spec.name == "clouds_2" and node.seed == 7
     assert t.graph(size=SIZE)["height"].shape == (1, 1, SIZE, SIZE)
+
+
+def test_weave_scratches_normal_metal_and_tile_blending_translate_natively(tmp_path):
+    """Library nodes of production materials: Weave 1 (its legacy output ``Weave``), the Scratches
+    Generator's Normal version (two outputs), PBR Metal Reflectance, and the Tile Generator's
+    Blending Mode (2 Max in every production file that sets it; Add when unset)."""
+    nodes = [W.instance_node(10, "pkg:///weave_1?dependency=3", params=[W.param("Tiling", "constantValueInt32", 32)],
+                             outputs=[(11, "Weave", 2)]),
+             W.instance_node(12, "pkg:///scratches_generator_normal?dependency=4",
+                             params=[W.param("spline_number", "constantValueInt32", 4096),
+                                     W.param("normal_format", "constantValueInt32", 1)],
+                             outputs=[(13, "normal", 1), (14, "mask", 2)]),
+             W.instance_node(15, "pkg:///pbr_metal_reflectance?dependency=5",
+                             params=[W.param("metal_color", "constantValueInt32", 4)], outputs=[(16, "output", 1)]),
+             W.instance_node(17, "pkg:///tile_generator?dependency=6",
+                             params=[W.param("BlendingMode", "constantValueInt32", 2),
+                                     W.param("GlobalOpacity", "constantValueFloat1", 0.5)],
+                             outputs=[(18, "output", 2)]),
+             W.output_node(20, 100, 10, 11), W.output_node(21, 101, 12, 13), W.output_node(22, 102, 12, 14),
+             W.output_node(23, 103, 15, 16), W.output_node(24, 104, 17, 18)]
+    doc = W.package([W.graph("L", nodes, outputs=[(100, "h", "height"), (101, "n", "normal"),
+                                                  (102, "r", "roughness"), (103, "c", "baseColor"),
+                                                  (104, "m", "metallic")])],
+                    dependencies=[(3, "sbs://weave_1.sbs"), (4, "sbs://pattern_scratches_generator.sbs"),
+                                  (5, "sbs://pbr_metal_reflectance.sbs"), (6, "sbs://tile_generator.sbs")])
+    t = translate(_write(tmp_path, doc))
+    assert t.report["nodes_translated"] == 4 and not t.report["unsupported"] and not t.report["params_dropped"]
+    by_spec = {n.spec.name: n for n in t.graph.nodes.values()}
+    assert set(by_spec) == {"weave_1", "scratches_generator_normal", "pbr_metal_reflectance", "tile_generator"}
+    assert by_spec["weave_1"].fixed["tiling"] == 32
+    assert by_spec["scratches_generator_normal"].fixed["amount"] == 45   # 4096 scratches, two a cell
+    assert by_spec["tile_generator"].fixed["blending_mode"] == 2
+    out = t.graph(size=SIZE)
+    assert out["normal"].shape[1] == 4 and out["roughness"].shape[1] == 1
+    copper = out["basecolor"][0, :3, 0, 0]
+    assert copper[0] > copper[1] > copper[2]
 
 
 def test_output_size_inheritance(tmp_path):

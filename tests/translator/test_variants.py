@@ -47,6 +47,10 @@ def test_normalisation_and_resolution_rules():
     assert aliases.resolve_param(tile, "Pattern_Type") == [("pattern", None)]
     assert aliases.resolve_param(tile, "CheckerMask") == [("checker_mask", None)]      # underscores squashed
     assert aliases.resolve_param(tile, "RandomMask") == [("mask_random", None)]
+    assert aliases.resolve_param(tile, "BlendingMode") == [("blending_mode", None)]   # legacy and current
+    assert aliases.resolve_param(tile, "blending_mode") == [("blending_mode", None)]
+    assert aliases.resolve_param(tile, "GlobalOpacity") == [("global_opacity", None)]
+    assert aliases.resolve_param(tile, "background_color") == [("background_level", None)]   # grey here
     colour = get_spec("tile_generator_color")
     assert aliases.resolve_param(colour, "Nb_X") == [("x_amount", None)]           # 64 in a production granite
     assert aliases.resolve_param(colour, "Color_Variation") == [("color_random", None)]

@@ -27,9 +27,10 @@ import torch.nn.functional as F
 
 from ..errors import DiffMatError
 from .common import lerp, param4d, pixel_grid
+from .library_normal import height_to_normal_map
 
 __all__ = ["shape_pattern", "polygon_pattern", "linear_gradient", "mirrored_linear_gradient",
-           "smooth_linear_gradient", "normal_color", "stripes", "scratches", "creased"]
+           "smooth_linear_gradient", "normal_color", "stripes", "scratches", "scratches_normal", "creased"]
 
 TAU = 2.0 * math.pi
 
@@ -270,8 +271,9 @@ class GridMask:
 
 def _cell_values(nx, ny, rnd, pix, hx, hy, softness, position_random, scale_random, rotation, rotation_random,
                  luminance_random, mask_random, spec, spec_random, cr, *, use_pos, use_scale, use_rot, use_lum,
-                 use_mask, use_spec, grid_mask: GridMask) -> dict[str, torch.Tensor]:
-    """The per-cell quantities that vary between cells, each (B|1, ny * nx)."""
+                 use_mask, use_spec, grid_mask: GridMask, lum_offset=None) -> dict[str, torch.Tensor]:
+    """The per-cell quantities that vary between cells, each (B|1, ny * nx). ``lum_offset``: a
+    level subtracted from every cell's luminance (the "add_sub" blending's background)."""
     # per-cell derived quantities (B|1, ny * nx): every transcendental is evaluated once a cell, and
     # a pixel gathers only what varies between cells
 
@@ -294,10 +296,12 @@ def _cell_values(nx, ny, rnd, pix, hx, hy, softness, position_random, scale_rand
         iex = 1.0 / (ex_c if use_scale else pc(hx.clamp_min(1e-6)))
         iey = 1.0 / (ey_c if use_scale else pc(hy.clamp_min(1e-6)))
         cellv["a11"], cellv["a12"], cellv["a21"], cellv["a22"] = ca * iex, sa * iex, -sa * iey, ca * iey
-    if use_lum or use_mask or grid_mask.active:
+    if use_lum or use_mask or grid_mask.active or lum_offset is not None:
         fac: float | torch.Tensor = 1.0
         if use_lum:
             fac = 1.0 - pc(luminance_random) * rnd[RND_LUM]
+        if lum_offset is not None:
+            fac = fac - pc(lum_offset)
         if use_mask or grid_mask.active:
             # soft mask: fully visible at mask_random = 0, fully hidden at mask_random = 1
             shown = smoothstep01((rnd[RND_MASK] - pc(mask_random) * 1.05) / 0.05 + 1.0)
@@ -356,21 +360,26 @@ class _CellShape:
         return h, vals
 
 
-def _keep_highest(best, color, h, vals):
-    """Overlapping shapes combine by maximum; the colour (``vals`` given) follows the highest."""
+def _combine(acc, h, vals, add: bool):
+    """Overlapping shapes combine by maximum, or by sum with ``add``; the colour (``vals`` given)
+    follows the highest shape either way. ``acc``: None or (combined, highest, colour)."""
     col = torch.cat([vals["r"], vals["g"], vals["b"]], dim=1) if vals is not None else None
-    if best is None:
-        if col is not None:
-            color = col.expand(h.shape[0], -1, -1, -1) if col.shape[0] < h.shape[0] else col
-        return h, color
+    if acc is None:
+        if col is not None and col.shape[0] < h.shape[0]:
+            col = col.expand(h.shape[0], -1, -1, -1)
+        return h, h, col
+    combined, highest, color = acc
     if col is not None:
-        color = torch.where(h > best, col, color)
-    return torch.maximum(best, h), color
+        color = torch.where(h > highest, col, color)
+    highest = torch.maximum(highest, h)
+    return (combined + h if add else highest), highest, color
 
 
 # the fewest pixels across a cell at which ``tile_field`` samples its shapes directly; smaller cells
 # are drawn supersampled and box-filtered down (``tile_supersampling``)
 MIN_CELL_PIXELS = 8
+# how overlapping shapes combine (``tile_field(blending=)``): the Tile Generator's Blending Mode
+BLENDINGS = ("max", "add", "add_sub")
 # supersampling never draws more than this many pixels across (memory: at 2048 px every cell of up
 # to 256 per row already has 8 pixels)
 MAX_SUPERSAMPLED_SIZE = 2048
@@ -392,7 +401,8 @@ def tile_field(size: int, nx: int, ny: int, *, seed: int, profile: Callable, sca
                interstice=(0.0, 0.0), offset=0.0, position_random=0.0, scale_random=0.0, rotation=0.0,
                rotation_random=0.0, luminance_random=0.0, mask_random=0.0, pattern_specific=0.5,
                pattern_specific_random=0.0, softness=0.0, color_random=None, grid_mask: GridMask = GridMask(),
-               own_cell: bool = False, device=None, dtype=torch.float32):
+               own_cell: bool = False, blending: str = "max", background=0.0, opacity=1.0,
+               device=None, dtype=torch.float32):
     """A grid of ``nx`` × ``ny`` cells, one shape per cell; every alternate row is shifted right by
     ``offset`` cells. The shape fills its cell at scale 1 less the ``interstice`` gap (fraction of
     the cell), times ``size_xy`` (non-uniform size). Per cell, from ``lattice_random(seed)``:
@@ -401,10 +411,15 @@ def tile_field(size: int, nx: int, ny: int, *, seed: int, profile: Callable, sca
     cell is hidden when r < ``mask_random`` (a soft threshold, so mask_random is differentiable),
     and ``grid_mask`` hides every other tile, column or row (or, inverted, shows only those).
 
+    ``blending`` (the Tile Generator's Blending Mode): "max" keeps the highest shape over the
+    ``background`` level; "add" adds every shape to it; "add_sub" adds each shape's luminance less
+    the background, so darker tiles darken. ``opacity`` scales what the shapes add (Global
+    Opacity). The result is clamped to [0, 1].
+
     ``softness`` (local units, 1 = the half size) widens hard edges beyond the one-pixel
     anti-aliasing. ``profile(x, y, w, spec, ex, ey)`` gives the shape's height at local coordinates
     (the shape fills [-1, 1]²), ``w`` one pixel (plus softness) in local units, ``ex``/``ey`` the
-    half extents in texture units. Overlapping shapes combine by maximum. Returns ``(height, color)``:
+    half extents in texture units. Overlapping shapes combine as ``blending`` says. Returns ``(height, color)``:
     height (B, 1, H, W) and, when ``color_random`` is given, the winning cell's random colour
     (B, 3, H, W) mixed towards white by 1 - color_random, else None.
 
@@ -412,7 +427,8 @@ def tile_field(size: int, nx: int, ny: int, *, seed: int, profile: Callable, sca
     (square, disc, bell…); then, when every cell has the same geometry (no position, scale,
     rotation, mask or pattern-specific randomness, quarter-turn rotation), a neighbour's shape is
     never higher than the pixel's own shape, and only the own cell is evaluated (the neighbours'
-    soft edges spilling over the border differ from the own one's by their luminance only).
+    soft edges spilling over the border differ from the own one's by their luminance only). Shapes
+    that are added must also stay within their cells, without softness.
 
     Cells of fewer than ``MIN_CELL_PIXELS`` pixels are drawn at a multiple of ``size`` and
     box-filtered down (``tile_supersampling``).
@@ -421,7 +437,11 @@ def tile_field(size: int, nx: int, ny: int, *, seed: int, profile: Callable, sca
     size = size * k
     ref = ref_tensor(device, dtype)
     ucoord = _pixel_axis(size, device, dtype)
+    if blending not in BLENDINGS:
+        raise DiffMatError(f"tile blending {blending!r}: expected one of {', '.join(BLENDINGS)}")
     rnd = lattice_random(seed, N_RND, nx * ny, device, dtype)
+    background = param4d(background, ref)
+    lum_offset = background if blending == "add_sub" else None
     scale = param4d(scale, ref)
     sx, sy = _split2(size_xy, ref)
     ix, iy = _split2(interstice, ref)
@@ -448,6 +468,11 @@ def tile_field(size: int, nx: int, ny: int, *, seed: int, profile: Callable, sca
     use_lum, use_mask, use_spec = _active(luminance_random), _active(mask_random), _active(spec_random)
     if grid_mask.invert and not (use_mask or grid_mask.checker or grid_mask.columns or grid_mask.rows):
         grid_mask = GridMask()  # nothing masked: nothing to invert
+    if blending != "max":
+        # shapes that are added must not reach into a neighbour's cell (but for its edge pixel)
+        with torch.no_grad():
+            own_cell = own_cell and not _active(softness) and bool((hx * nx <= 0.5 + 1e-6).all()) \
+                and bool((hy * ny <= 0.5 + 1e-6).all())
     if own_cell and not (rotated or use_pos or use_scale or use_mask or grid_mask.active or use_spec
                          or _active(rotation_random)):
         mx, my, per_element = 1, 1, False
@@ -460,13 +485,12 @@ def tile_field(size: int, nx: int, ny: int, *, seed: int, profile: Callable, sca
     cellv = _cell_values(nx, ny, rnd, pix, hx, hy, softness, position_random, scale_random, rotation,
                          rotation_random, luminance_random, mask_random, spec, spec_random, cr,
                          use_pos=use_pos, use_scale=use_scale, use_rot=use_rot, use_lum=use_lum,
-                         use_mask=use_mask, use_spec=use_spec, grid_mask=grid_mask)
+                         use_mask=use_mask, use_spec=use_spec, grid_mask=grid_mask, lum_offset=lum_offset)
     cellv = {k: v.reshape(v.shape[0], ny, nx) for k, v in cellv.items()}
     hx_e, hy_e = hx.clamp_min(1e-6), hy.clamp_min(1e-6)
     shape = _CellShape(profile, size, nx, use_pos, use_scale, use_rot, use_spec, hx_e, hy_e,
                        pix / torch.sqrt(hx_e * hy_e) + softness, spec)
-    best = None
-    color = None
+    acc = None
     for dj in range(my):
         r = row0 + dj
         shift = offset * torch.remainder(r, 2.0)  # (B|1, 1, H, 1)
@@ -487,9 +511,12 @@ def tile_field(size: int, nx: int, ny: int, *, seed: int, profile: Callable, sca
                 h = h * (keep_r & (c >= c_lo) & (c < c_lo + mxb))
             if h.shape[-2:] != (size, size):
                 h = h.expand(-1, -1, size, size)
-            best, color = _keep_highest(best, color, h, vals if cr is not None else None)
-    assert best is not None  # the windows mx, my are at least 1
-    best = best.clamp(0.0, 1.0)
+            acc = _combine(acc, h, vals if cr is not None else None, blending != "max")
+    assert acc is not None  # the windows mx, my are at least 1
+    shapes, _, color = acc
+    if blending == "max":
+        shapes = torch.maximum(shapes, background) - background
+    best = (background + param4d(opacity, ref) * shapes).clamp(0.0, 1.0)
     if k > 1:
         pooled = F.avg_pool2d(best, k)
         if color is not None:
@@ -708,6 +735,26 @@ def scratches(*, amount: int = 6, length=1.4, width=0.02, angle=0.0, angle_rando
 # ----------------------------------------------------------------------------------------------
 # Creased
 # ----------------------------------------------------------------------------------------------
+
+# our choice (no public figure): at Normal Intensity 1 a groove one 256-px pixel wide tilts its
+# walls by about 60 degrees, a clearly cut scratch; 0.5 (a production anodised metal's) about 45
+SCRATCH_NORMAL_GAIN = 4.0
+
+
+def scratches_normal(*, amount: int = 6, length=1.4, width=0.02, angle=0.0, angle_random=0.5,
+                     length_random=0.5, luminance_random=0.5, mask_random=0.0, normal_intensity=0.5,
+                     normal_format: int = 0, size: int = 512, seed: int = 0, device=None,
+                     dtype=torch.float32) -> tuple[torch.Tensor, torch.Tensor]:
+    """Scratches Generator (Normal): the scratches of ``scratches`` as grooves, returned as
+    (normal map, mask). Substance's documentation: the same scratches, with a normal map "based on
+    the depth of these scratches"; here the depth is the mask itself, its slopes scaled by
+    ``normal_intensity`` × ``SCRATCH_NORMAL_GAIN`` (DirectX or OpenGL green, ``normal_format``)."""
+    mask = scratches(amount=amount, length=length, width=width, angle=angle, angle_random=angle_random,
+                     length_random=length_random, luminance_random=luminance_random, mask_random=mask_random,
+                     size=size, seed=seed, device=device, dtype=dtype)
+    gain = param4d(normal_intensity, ref_tensor(device, dtype)) * SCRATCH_NORMAL_GAIN
+    return height_to_normal_map(1.0 - mask, gain, normal_format), mask
+
 def creased(*, scale: int = 4, disorder=0.0, folds: int = 12, size: int = 512, seed: int = 0, device=None,
             dtype=torch.float32) -> torch.Tensor:
     """Creased: crumpled-paper creases, a sum of ``folds`` triangle waves (sharp ridges) along random

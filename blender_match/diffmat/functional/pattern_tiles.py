@@ -26,7 +26,7 @@ from .pattern_shapes import (
 )
 
 __all__ = ["tile_pattern", "tile_pattern_color", "tile_sampler_pattern", "brick_pattern", "checker_pattern",
-           "parquet_pattern", "weave_pattern", "mesh_pattern", "circular_splatter"]
+           "parquet_pattern", "weave_pattern", "plain_weave", "mesh_pattern", "circular_splatter"]
 
 # Tile Generator "Pattern" list: 0 is the image input, then the shape library in Substance's order.
 TILE_PATTERNS = ("image",) + SHAPES[:15]
@@ -69,6 +69,9 @@ def _pattern_profile(pattern: int, image, where: str):
 _TILE_FIELD_ARGS = ("scale", "size_xy", "interstice", "offset", "position_random", "scale_random", "rotation",
                     "rotation_random", "luminance_random", "mask_random", "pattern_specific", "softness",
                     "color_random", "seed", "device", "dtype")
+# the Tile Generator's Blending Mode as files store it (index 1 is an empty entry of Substance's
+# list, read as Add; the MATch reference implementation, config/generators/tile_generator.yml)
+TILE_BLENDINGS = ("add", "add", "max", "add_sub")
 
 
 def _tile_generator(where: str, image, args: dict):
@@ -78,6 +81,11 @@ def _tile_generator(where: str, image, args: dict):
     ny = check_int(args["y_amount"], f"{where}.y_amount", 1, 256)
     profile = _pattern_profile(args["pattern"], image, where)
     field = {k: args[k] for k in _TILE_FIELD_ARGS if k in args}
+    if "blending_mode" in args:
+        field["blending"] = TILE_BLENDINGS[check_enum(args["blending_mode"], f"{where}.blending_mode",
+                                                      range(len(TILE_BLENDINGS)))]
+        field["opacity"] = args["global_opacity"]
+        field["background"] = args.get("background_level", 0.0)
     grid_mask = GridMask(checker=bool(args.get("checker_mask")), columns=bool(args.get("horizontal_mask")),
                          rows=bool(args.get("vertical_mask")), invert=bool(args.get("invert_mask")))
     return tile_field(args["size"], nx, ny, profile=profile, own_cell=_monotone(args["pattern"]),
@@ -88,13 +96,16 @@ def tile_pattern(pattern_input_1=None, *, x_amount: int = 10, y_amount: int = 10
                  pattern_specific=0.2, scale=1.0, size_xy=(1.0, 1.0), interstice=(0.0, 0.0), offset=0.0,
                  position_random=0.0, scale_random=0.0, rotation=0.0, rotation_random=0.0, luminance_random=0.0,
                  mask_random=0.0, softness=0.0, checker_mask: bool = False, horizontal_mask: bool = False,
-                 vertical_mask: bool = False, invert_mask: bool = False, size: int = 512, seed: int = 0,
+                 vertical_mask: bool = False, invert_mask: bool = False, blending_mode: int = 0,
+                 global_opacity=1.0, background_level=0.0, size: int = 512, seed: int = 0,
                  device=None, dtype=torch.float32) -> torch.Tensor:
     """Tile Generator: an ``x_amount`` × ``y_amount`` grid of one pattern (``TILE_PATTERNS``;
     0 reads ``pattern_input_1``), every alternate row offset by ``offset`` cells, with per-tile
     random position, scale, rotation, luminance and masking (see ``tile_field``); the mask
     switches hide every other tile (checker), column (horizontal) or row (vertical), or with
-    ``invert_mask`` show only what the masks hide (``GridMask``)."""
+    ``invert_mask`` show only what the masks hide (``GridMask``). Overlapping tiles combine by
+    ``blending_mode`` (``TILE_BLENDINGS``: Add by default, as Substance's) over the
+    ``background_level``, the tiles scaled by ``global_opacity``."""
     out, _ = _tile_generator("tile_generator", pattern_input_1, locals())
     return out
 
@@ -104,12 +115,13 @@ def tile_pattern_color(pattern_input_1=None, *, x_amount: int = 10, y_amount: in
                        position_random=0.0, scale_random=0.0, rotation=0.0, rotation_random=0.0,
                        luminance_random=0.0, mask_random=0.0, softness=0.0, checker_mask: bool = False,
                        horizontal_mask: bool = False, vertical_mask: bool = False, invert_mask: bool = False,
-                       color_random=1.0,
+                       blending_mode: int = 0, global_opacity=1.0, color_random=1.0,
                        pattern_color=(1.0, 1.0, 1.0, 1.0), background_color=(0.0, 0.0, 0.0, 1.0),
                        size: int = 512, seed: int = 0, device=None, dtype=torch.float32) -> torch.Tensor:
     """Tile Generator Color: the tile layout of ``tile_pattern``; each tile takes
     ``pattern_color`` × a random colour (mixed in by ``color_random``) × its height, over
-    ``background_color``. RGBA, opaque."""
+    ``background_color``; overlapping tiles combine as ``tile_pattern``'s (Add Sub as Add: the
+    background colour is laid under the tiles afterwards). RGBA, opaque."""
     h, col = _tile_generator("tile_generator_color", pattern_input_1, locals())
     ref = ref_tensor(device, dtype)
     fg = param4d(pattern_color, ref)[:, :3] * col
@@ -237,6 +249,14 @@ def weave_pattern(*, tiling: int = 4, width=(0.8, 0.8), luminance_random=0.2, si
     as a fraction of the spacing, random luminance per thread."""
     tiling = check_int(tiling, "weave_generator.tiling", 1, 128)
     return _weave(size, 2 * tiling, width, luminance_random, seed, device, dtype)
+
+
+def plain_weave(*, tiling: int = 4, size: int = 512, seed: int = 0, device=None,
+                dtype=torch.float32) -> torch.Tensor:
+    """Weave 1: "a simple weave pattern" (Substance's documentation), ``tiling`` repeats each way of
+    the over-under unit of two threads; the Weave Generator's threads, without their random shade."""
+    tiling = check_int(tiling, "weave_1.tiling", 1, 128)
+    return _weave(size, 2 * tiling, (0.8, 0.8), 0.0, seed, device, dtype)
 
 
 def mesh_pattern(*, tiling: int = 4, width=0.3, size: int = 512, seed: int = 0, device=None,

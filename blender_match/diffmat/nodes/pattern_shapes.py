@@ -8,6 +8,15 @@ GEN = ("size", "seed", "device", "dtype")
 GEN_NOSEED = ("size", "device", "dtype")
 SHAPE_DOC = ", ".join(f"{i} {n}" for i, n in enumerate(SHAPES))
 
+_SCRATCHES = (Param("amount", 6, 1, 64, kind="int", doc="cells per image side (two lines per cell)"),
+              Param("length", 1.4, 0.0, 2.0, doc="line length, cells"),
+              Param("width", 0.02, 0.0, 0.2, doc="line width, cells"),
+              Param("angle", 0.0, 0.0, 1.0, doc="turns"),
+              Param("angle_random", 0.5, 0.0, 1.0, doc="turns of random spread"),
+              Param("length_random", 0.5, 0.0, 1.0),
+              Param("luminance_random", 0.5, 0.0, 1.0),
+              Param("mask_random", 0.0, 0.0, 1.0, doc="fraction of lines hidden"))
+
 register(NodeSpec(
     "shape", "generator", F.shape_pattern,
     params=(Param("pattern", 0, kind="enum", choices=tuple(range(len(SHAPES))), doc=SHAPE_DOC),
@@ -76,16 +85,18 @@ register(NodeSpec(
 
 register(NodeSpec(
     "scratches_generator", "generator", F.scratches,
-    params=(Param("amount", 6, 1, 64, kind="int", doc="cells per image side (two lines per cell)"),
-            Param("length", 1.4, 0.0, 2.0, doc="line length, cells"),
-            Param("width", 0.02, 0.0, 0.2, doc="line width, cells"),
-            Param("angle", 0.0, 0.0, 1.0, doc="turns"),
-            Param("angle_random", 0.5, 0.0, 1.0, doc="turns of random spread"),
-            Param("length_random", 0.5, 0.0, 1.0),
-            Param("luminance_random", 0.5, 0.0, 1.0),
-            Param("mask_random", 0.0, 0.0, 1.0, doc="fraction of lines hidden")),
+    params=_SCRATCHES,
     context=GEN,
     doc="Scratches Generator (simplified): scattered thin tapered lines."))
+
+register(NodeSpec(
+    "scratches_generator_normal", "generator", F.scratches_normal,
+    outputs=("normal", "mask"),
+    params=_SCRATCHES + (
+        Param("normal_intensity", 0.5, 0.0, 1.0, doc="slope of the grooves"),
+        Param("normal_format", 0, kind="enum", choices=(0, 1), doc="0 DirectX, 1 OpenGL")),
+    context=GEN,
+    doc="Scratches Generator (Normal): the scratches as a normal map of grooves, and their mask."))
 
 register(NodeSpec(
     "creased", "generator", F.creased,

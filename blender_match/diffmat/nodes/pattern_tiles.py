@@ -1,11 +1,12 @@
 """Declarations of the tile-layout pattern generators (see functional/pattern_tiles.py)."""
 from .. import functional as F
-from ..functional.pattern_tiles import TILE_PATTERNS
+from ..functional.pattern_tiles import TILE_BLENDINGS, TILE_PATTERNS
 from .registry import register
 from .spec import Input, NodeSpec, Param
 
 GEN = ("size", "seed", "device", "dtype")
 PATTERN_DOC = ", ".join(f"{i} {n}" for i, n in enumerate(TILE_PATTERNS))
+BLENDING_DOC = "how overlapping tiles combine: 0 Add, 2 Max, 3 Add Sub (1: Add)"
 
 
 def _layout(pattern=8, scale=1.0):
@@ -29,13 +30,15 @@ def _layout(pattern=8, scale=1.0):
         Param("checker_mask", False, kind="bool", doc="hides every other tile"),
         Param("horizontal_mask", False, kind="bool", doc="hides every other column"),
         Param("vertical_mask", False, kind="bool", doc="hides every other row"),
-        Param("invert_mask", False, kind="bool", doc="shows only what the masks (random mask included) hide"))
+        Param("invert_mask", False, kind="bool", doc="shows only what the masks (random mask included) hide"),
+        Param("blending_mode", 0, kind="enum", choices=tuple(range(len(TILE_BLENDINGS))), doc=BLENDING_DOC),
+        Param("global_opacity", 1.0, 0.0, 1.0, optimizable=False, doc="scales what the tiles add"))
 
 
 register(NodeSpec(
     "tile_generator", "generator", F.tile_pattern,
     inputs=(Input("pattern_input_1", "any", optional=True),),
-    params=_layout(),
+    params=_layout() + (Param("background_level", 0.0, 0.0, 1.0, optimizable=False, doc="the grey under the tiles"),),
     context=GEN,
     doc="Tile Generator: a grid of shapes with per-tile random variations."))
 
@@ -102,6 +105,12 @@ register(NodeSpec(
             Param("luminance_random", 0.2, 0.0, 1.0)),
     context=GEN,
     doc="Weave Generator: interlaced threads."))
+
+register(NodeSpec(
+    "weave_1", "generator", F.plain_weave,
+    params=(Param("tiling", 4, 1, 64, kind="int", doc="repeats of the two-thread weave each way"),),
+    context=GEN,
+    doc="Weave 1: a simple (plain) weave, threads of one shade."))
 
 register(NodeSpec(
     "mesh_1", "generator", F.mesh_pattern,

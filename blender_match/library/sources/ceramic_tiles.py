@@ -31,6 +31,7 @@ from blender_match.library.authoring import (
     MULTIPLY,
     OVERLAY,
     SOFT_LIGHT,
+    TILES_MAX,
     ao_darken,
     color_over,
     constant_map,
@@ -52,10 +53,10 @@ def build() -> SbsGraph:
     g.expose("dirt", 0.3, min=0.0, max=1.0)
 
     # ---- layout ------------------------------------------------------------------------------
-    g.add("tiles", "tile_generator", seed=31, x_amount=4, y_amount=4, pattern=BRICK,
+    g.add("tiles", "tile_generator", blending_mode=TILES_MAX, seed=31, x_amount=4, y_amount=4, pattern=BRICK,
           pattern_specific=0.08, interstice=(0.035, 0.035), luminance_random=0.0)
     g.bind("tiles", "interstice", vector(get("grout_width"), get("grout_width")).graph())
-    g.add("tile_id", "tile_generator", seed=31, x_amount=4, y_amount=4, pattern=SQUARE,
+    g.add("tile_id", "tile_generator", blending_mode=TILES_MAX, seed=31, x_amount=4, y_amount=4, pattern=SQUARE,
           interstice=(0.0, 0.0), luminance_random=1.0)
     g.add("tiles_round", "blur_hq_grayscale", {"source": "tiles"}, intensity=1.2)
     g.add("tile_mask", "histogram_scan", {"input_1": "tiles_round"}, position=0.9, contrast=0.7)

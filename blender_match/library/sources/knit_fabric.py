@@ -33,6 +33,7 @@ from blender_match.library.authoring import (
     MAX,
     MULTIPLY,
     SOFT_LIGHT,
+    TILES_MAX,
     ao_darken,
     constant_map,
     gradient_over,
@@ -54,10 +55,12 @@ def build() -> SbsGraph:
     g.expose("roughness", 0.88, min=0.5, max=1.0)
 
     # ---- stitches: left and right legs of every V ---------------------------------------------
+    # each leg reaches into the rows above and below; overlapping legs keep the higher (Max
+    # blending), so the stitches stay distinct where Add would sum them to white
     legs = dict(x_amount=COLS, y_amount=ROWS, pattern=3, scale=1.0, size_xy=(0.62, 1.75),
                 luminance_random=0.25, position_random=0.04, scale_random=0.08)
-    g.add("legs_l_src", "tile_generator", seed=61, rotation=0.06, **legs)
-    g.add("legs_r_src", "tile_generator", seed=62, rotation=0.94, **legs)
+    g.add("legs_l_src", "tile_generator", blending_mode=TILES_MAX, seed=61, rotation=0.06, **legs)
+    g.add("legs_r_src", "tile_generator", blending_mode=TILES_MAX, seed=62, rotation=0.94, **legs)
     quarter = 0.25 / COLS
     g.add("legs_l", "transformation", {"input1": "legs_l_src"}, offset=(quarter, 0.0))
     g.add("legs_r", "transformation", {"input1": "legs_r_src"}, offset=(-quarter, 0.0))

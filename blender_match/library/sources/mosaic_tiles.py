@@ -34,6 +34,7 @@ from blender_match.library.authoring import (
     MULTIPLY,
     OVERLAY,
     SOFT_LIGHT,
+    TILES_MAX,
     ao_darken,
     constant_map,
     gradient_over,
@@ -56,10 +57,10 @@ def build() -> SbsGraph:
     g.expose("glaze_roughness", 0.1, min=0.02, max=0.6)
 
     # ---- layout ------------------------------------------------------------------------------
-    g.add("tiles", "tile_generator", seed=81, x_amount=N, y_amount=N, pattern=BRICK,
+    g.add("tiles", "tile_generator", blending_mode=TILES_MAX, seed=81, x_amount=N, y_amount=N, pattern=BRICK,
           pattern_specific=0.12, interstice=(0.09, 0.09), luminance_random=0.0)
     g.bind("tiles", "interstice", vector(get("grout_width"), get("grout_width")).graph())
-    g.add("tile_id", "tile_generator", seed=81, x_amount=N, y_amount=N, pattern=SQUARE,
+    g.add("tile_id", "tile_generator", blending_mode=TILES_MAX, seed=81, x_amount=N, y_amount=N, pattern=SQUARE,
           interstice=(0.0, 0.0), luminance_random=1.0)
     g.add("tile_mask", "histogram_scan", {"input_1": "tiles"}, position=0.9, contrast=0.75)
 
@@ -68,7 +69,7 @@ def build() -> SbsGraph:
     # another seed, inverted, is averaged in, so slopes of either sign appear around mid-gray
     for axis, rot, seeds in (("x", 0.0, (82, 83)), ("y", 0.25, (84, 85))):
         for k in (0, 1):
-            g.add(f"ramp_{axis}{k}", "tile_generator", seed=seeds[k], x_amount=N, y_amount=N,
+            g.add(f"ramp_{axis}{k}", "tile_generator", blending_mode=TILES_MAX, seed=seeds[k], x_amount=N, y_amount=N,
                   pattern=GRADATION, rotation=rot, interstice=(0.0, 0.0), luminance_random=1.0)
         g.add(f"ramp_{axis}1_inv", "invert_grayscale", {"source": f"ramp_{axis}1"})
         g.add(f"slope_{axis}", "blend", {"source": f"ramp_{axis}0", "destination": f"ramp_{axis}1_inv"},
@@ -99,7 +100,7 @@ def build() -> SbsGraph:
     # ---- colour ------------------------------------------------------------------------------
     g.add("glaze_base", "uniform", outputcolor=(0.22, 0.48, 0.58, 1.0))
     g.bind("glaze_base", "outputcolor", vector(get("tile_color", 3), 1.0).graph())
-    g.add("tile_hues", "tile_generator_color", seed=89, x_amount=N, y_amount=N, pattern=SQUARE,
+    g.add("tile_hues", "tile_generator_color", blending_mode=TILES_MAX, seed=89, x_amount=N, y_amount=N, pattern=SQUARE,
           interstice=(0.0, 0.0), color_random=0.5, pattern_color=(0.5, 0.5, 0.5, 1.0),
           luminance_random=0.0)
     g.add("glaze_hued", "blend", {"source": "tile_hues", "destination": "glaze_base"},

@@ -32,6 +32,7 @@ from blender_match.library.authoring import (
     MULTIPLY,
     OVERLAY,
     SUBTRACT,
+    TILES_MAX,
     brushing,
     color_over,
     gradient_over,
@@ -52,7 +53,7 @@ def build() -> SbsGraph:
     g.expose("wear", 0.3, min=0.0, max=1.0)
 
     # ---- holes -------------------------------------------------------------------------------------
-    g.add("holes_sharp", "tile_generator", x_amount=20, y_amount=24, pattern=2, offset=0.5,
+    g.add("holes_sharp", "tile_generator", blending_mode=TILES_MAX, x_amount=20, y_amount=24, pattern=2, offset=0.5,
           scale=0.6, size_xy=(1.0, 1.2), softness=0.08)
     g.bind("holes_sharp", "scale", lerp(0.35, 0.75, get("hole_size")).graph())
     g.add("holes", "blur_hq_grayscale", {"source": "holes_sharp"}, intensity=0.4)

@@ -31,6 +31,7 @@ from blender_match.library.authoring import (
     MULTIPLY,
     SOFT_LIGHT,
     SUBTRACT,
+    TILES_MAX,
     color_over,
     constant_map,
     gradient_over,
@@ -51,7 +52,7 @@ def build() -> SbsGraph:
     g.expose("roughness", 0.7, min=0.3, max=1.0)
 
     # ---- knots -------------------------------------------------------------------------------
-    g.add("knot_blobs", "tile_generator", seed=61, x_amount=2, y_amount=3, pattern=GAUSSIAN,
+    g.add("knot_blobs", "tile_generator", blending_mode=TILES_MAX, seed=61, x_amount=2, y_amount=3, pattern=GAUSSIAN,
           scale=0.55, position_random=0.8, scale_random=0.5, mask_random=0.5, offset=0.5)
     g.bind("knot_blobs", "mask_random", lerp(1.0, 0.0, get("knots")).graph())
     g.add("knot_field", "blur_hq_grayscale", {"source": "knot_blobs"}, intensity=8.0)

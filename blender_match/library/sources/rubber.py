@@ -33,6 +33,7 @@ from blender_match.library.authoring import (
     SCREEN,
     SOFT_LIGHT,
     SUBTRACT,
+    TILES_MAX,
     ao_darken,
     constant_map,
     gradient_over,
@@ -55,7 +56,7 @@ def build() -> SbsGraph:
     g.expose("roughness", 0.8, min=0.3, max=1.0)
 
     # ---- coins -------------------------------------------------------------------------------
-    g.add("discs", "tile_generator", seed=71, x_amount=N, y_amount=N, pattern=DISC, scale=0.6,
+    g.add("discs", "tile_generator", blending_mode=TILES_MAX, seed=71, x_amount=N, y_amount=N, pattern=DISC, scale=0.6,
           interstice=(0.0, 0.0), luminance_random=0.0)
     g.bind("discs", "scale", get("dot_size").graph())
     g.add("discs_soft", "blur_hq_grayscale", {"source": "discs"}, intensity=2.0)
