@@ -104,6 +104,19 @@ def test_moisture_noise_is_discs_around_grey_not_swirls(seed):
     assert _streakiness(x) < 0.045
 
 
+@pytest.mark.parametrize("name", ["dirt_1", "dirt_2", "dirt_3", "dirt_4", "dirt_5"])
+def test_dirt_noises_are_grainy_not_swirled_or_streaked(name):
+    """Substance's documentation: each Dirt noise is "a variation of the grainy Dirt noises". None is
+    domain-warped or ridged into swirls, and none runs in one direction (dirt_5 was stretched into
+    horizontal streaks, streakiness 0.63-0.67)."""
+    from blender_match.diffmat.functional.noise_grunge import GRUNGE_RECIPES
+    recipe = GRUNGE_RECIPES[name][0]
+    assert recipe.warp == 0 and recipe.mode != "ridged" and recipe.aspect == (1, 1)
+    for seed in (0, 1, 2):
+        x = getattr(F, f"noise_{name}")(size=256, seed=seed)
+        assert _streakiness(x) < 0.1
+
+
 @pytest.mark.parametrize("seed", [0, 1, 2])
 def test_crystal_2_is_upright_shards_in_a_grey_range(seed):
     """Crystal 2 sums long near-upright shards of signed brightness onto mid-grey, its coarsest

@@ -6,12 +6,16 @@ optional domain warp and a tone curve. Dirt maps take ``scale`` and ``disorder``
 ``balance`` (brightness offset of the tone curve, 0.5 = the map's own look) and ``contrast``
 (steepness, 0.5 = the map's own look).
 
+Substance's documentation calls the Dirt family "grainy" (Dirt 1, 2, 4 and 5 are each "a variation
+of the grainy Dirt noises"): no dirt here is warped or ridged into swirls. The rest of each recipe
+(cells, octaves, detail) is ours: the generators' own looks are not published.
+
 Per node (cells at scale 1, octaves x roughness, mode, detail x weight, warp, tone):
-dirt_1  smudges: value 2 cells 7x0.6 + speckle 0.3, warp 0.03, darkish
+dirt_1  grainy smudges: value 2 cells 7x0.6 + speckle 0.4, darkish
 dirt_2  puffy grime: gradient 4 cells 6x0.55 billow + cellular pits 0.4
-dirt_3  streaky crusts: value 2 cells 6x0.6 ridged + spots 0.3, warp 0.05
+dirt_3  grainy crusts: gradient 2 cells 6x0.6 + fine speckle 0.45
 dirt_4  sparse dust: gradient 1 cell 8x0.65 + speckle 0.5, bright, high contrast
-dirt_5  vertical run-off: value 2 cells 6x0.6 stretched (1, 4), warp 0.04
+dirt_5  grainy mottle: gradient 2 cells 6x0.6 + fine speckle 0.4
 dirt_6  dried cracks: gradient 4 cells 5x0.5 ridged + cellular seams 0.5
 grunge_map_001 fine grain: value 4 cells 8x0.7 + speckle 0.4, contrasted
 grunge_map_002 cracked: gradient 2 cells 7x0.6 ridged, warp 0.04
@@ -38,15 +42,15 @@ __all__: list[str] = []
 _DIRT = (1, 32, 1)
 GRUNGE_RECIPES: dict[str, tuple[Recipe, tuple, tuple]] = {
     "dirt_1": (Recipe(kind="value", cells=2, octaves=7, roughness=0.6, detail="speckle", detail_cells=16,
-                      detail_weight=0.3, warp=0.03, gain=1.0, offset=-0.2), _DIRT, ()),
+                      detail_weight=0.4, gain=1.0, offset=-0.2), _DIRT, ()),
     "dirt_2": (Recipe(cells=4, octaves=6, roughness=0.55, mode="billow", detail="cells", detail_cells=16,
                       detail_weight=0.4, gain=1.2), _DIRT, ()),
-    "dirt_3": (Recipe(kind="value", cells=2, octaves=6, roughness=0.6, mode="ridged", detail="spots", detail_cells=32,
-                      detail_weight=0.3, warp=0.05, gain=1.1), _DIRT, ()),
+    "dirt_3": (Recipe(cells=2, octaves=6, roughness=0.6, detail="speckle", detail_cells=32,
+                      detail_weight=0.45, gain=1.1), _DIRT, ()),
     "dirt_4": (Recipe(cells=1, octaves=8, roughness=0.65, detail="speckle", detail_cells=32, detail_weight=0.5,
                       gain=1.4, offset=0.3), _DIRT, ()),
-    "dirt_5": (Recipe(kind="value", cells=2, aspect=(1, 4), octaves=6, roughness=0.6, warp=0.04, gain=1.0),
-               _DIRT, ()),
+    "dirt_5": (Recipe(cells=2, octaves=6, roughness=0.6, detail="speckle", detail_cells=32,
+                      detail_weight=0.4, gain=1.0), _DIRT, ()),
     "dirt_6": (Recipe(cells=4, octaves=5, roughness=0.5, mode="ridged", detail="edges", detail_cells=8,
                       detail_weight=0.5, gain=1.3), _DIRT, ()),
 }
