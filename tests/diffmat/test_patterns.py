@@ -40,18 +40,38 @@ def test_tile_generator_interstice_widens_the_gaps():
     assert cols.min() < 0.01 and rows.min() > 0.4  # vertical gaps only
 
 
-def test_tile_generator_brick_offset_shifts_alternate_rows():
+def test_tile_generator_offset_shifts_every_row_by_its_number():
+    """Substance's Tile Generator "offsets the entire pattern incrementally over every consecutive
+    row": row k by k × offset cells (at 0.5, every other row by half a cell, as bricks)."""
     kw = dict(x_amount=4, y_amount=4, pattern=1, interstice=(0.2, 0.2))
     base = _render("tile_generator", **kw)[0, 0]
-    off = _render("tile_generator", offset=0.5, **kw)[0, 0]
     cell = S // 4
-    for row in range(4):
-        band = slice(row * cell, (row + 1) * cell)
-        if row % 2 == 0:
-            torch.testing.assert_close(off[band], base[band])
-        else:
-            torch.testing.assert_close(off[band], torch.roll(base[band], cell // 2, dims=-1))
-    assert not torch.allclose(off, base)
+    for offset in (0.5, 0.25):
+        off = _render("tile_generator", offset=offset, **kw)[0, 0]
+        for row in range(4):
+            band = slice(row * cell, (row + 1) * cell)
+            shift = round(row * offset * cell) % S
+            torch.testing.assert_close(off[band], torch.roll(base[band], shift, dims=-1))
+    brick = _render("brick_generator", x_amount=4, y_amount=4, offset=0.25)[0, 0]   # Brick Generator:
+    torch.testing.assert_close(brick[2 * cell:3 * cell], _render("brick_generator", x_amount=4, y_amount=4,
+                                                                  offset=0.0)[0, 0][2 * cell:3 * cell])  # alternate
+
+
+def test_tile_generator_luminance_by_number_fades_the_tiles_in_order():
+    """Luminance By Number: tile k of N (counted down each column, then across) at (k + 1) / N."""
+    out = _render("tile_generator", x_amount=4, y_amount=4, pattern=1, scale=0.5, luminance_by_number=True)[0, 0]
+    centres = out[S // 8::S // 4, S // 8::S // 4]   # [row, column]
+    expected = (torch.arange(4)[None, :] * 4 + torch.arange(4)[:, None] + 1) / 16
+    torch.testing.assert_close(centres, expected.float())
+
+
+def test_tile_generator_add_adds_each_tile_above_the_background():
+    """Under Add, a tile adds its luminance less the background (at least 0); Max keeps the higher."""
+    kw = dict(x_amount=4, y_amount=4, pattern=1, scale=0.5, luminance_random=1.0, background_level=0.4)
+    add = _render("tile_generator", **kw)[0, 0]
+    high = _render("tile_generator", blending_mode=2, **kw)[0, 0]
+    torch.testing.assert_close(add, high)   # tiles apart: the same either way
+    assert add.min() >= 0.4 - 1e-6 and add.max() > 0.9
 
 
 @pytest.mark.parametrize("pattern", [2, 7, 8, 10])  # disc, pyramid, brick, waves

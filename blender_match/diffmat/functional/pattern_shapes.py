@@ -271,9 +271,12 @@ class GridMask:
 
 def _cell_values(nx, ny, rnd, pix, hx, hy, softness, position_random, scale_random, rotation, rotation_random,
                  luminance_random, mask_random, spec, spec_random, cr, *, use_pos, use_scale, use_rot, use_lum,
-                 use_mask, use_spec, grid_mask: GridMask, lum_offset=None) -> dict[str, torch.Tensor]:
+                 use_mask, use_spec, grid_mask: GridMask, lum_offset=None, lum_floor: bool = False,
+                 by_number: bool = False) -> dict[str, torch.Tensor]:
     """The per-cell quantities that vary between cells, each (B|1, ny * nx). ``lum_offset``: a
-    level subtracted from every cell's luminance (the "add_sub" blending's background)."""
+    level subtracted from every cell's luminance (the background under added tiles), the result at
+    least 0 with ``lum_floor``; ``by_number``: luminance × (k + 1) / N for the k-th tile counted
+    down each column, then across."""
     # per-cell derived quantities (B|1, ny * nx): every transcendental is evaluated once a cell, and
     # a pixel gathers only what varies between cells
 
@@ -296,12 +299,17 @@ def _cell_values(nx, ny, rnd, pix, hx, hy, softness, position_random, scale_rand
         iex = 1.0 / (ex_c if use_scale else pc(hx.clamp_min(1e-6)))
         iey = 1.0 / (ey_c if use_scale else pc(hy.clamp_min(1e-6)))
         cellv["a11"], cellv["a12"], cellv["a21"], cellv["a22"] = ca * iex, sa * iex, -sa * iey, ca * iey
-    if use_lum or use_mask or grid_mask.active or lum_offset is not None:
+    if use_lum or use_mask or grid_mask.active or lum_offset is not None or by_number:
         fac: float | torch.Tensor = 1.0
         if use_lum:
             fac = 1.0 - pc(luminance_random) * rnd[RND_LUM]
+        if by_number:
+            row, col = torch.div(torch.arange(nx * ny, device=rnd.device), nx, rounding_mode="floor"), \
+                torch.arange(nx * ny, device=rnd.device) % nx
+            fac = fac * ((col * ny + row + 1).to(rnd.dtype) / (nx * ny))
         if lum_offset is not None:
-            fac = fac - pc(lum_offset)
+            shifted = fac - pc(lum_offset) + rnd.new_zeros(1, nx * ny)   # one value a cell, whatever came before
+            fac = shifted.clamp_min(0.0) if lum_floor else shifted
         if use_mask or grid_mask.active:
             # soft mask: fully visible at mask_random = 0, fully hidden at mask_random = 1
             shown = smoothstep01((rnd[RND_MASK] - pc(mask_random) * 1.05) / 0.05 + 1.0)
@@ -402,6 +410,7 @@ def tile_field(size: int, nx: int, ny: int, *, seed: int, profile: Callable, sca
                rotation_random=0.0, luminance_random=0.0, mask_random=0.0, pattern_specific=0.5,
                pattern_specific_random=0.0, softness=0.0, color_random=None, grid_mask: GridMask = GridMask(),
                own_cell: bool = False, blending: str = "max", background=0.0, opacity=1.0,
+               offset_every_row: bool = False, luminance_by_number: bool = False,
                device=None, dtype=torch.float32):
     """A grid of ``nx`` × ``ny`` cells, one shape per cell; every alternate row is shifted right by
     ``offset`` cells. The shape fills its cell at scale 1 less the ``interstice`` gap (fraction of
@@ -412,9 +421,12 @@ def tile_field(size: int, nx: int, ny: int, *, seed: int, profile: Callable, sca
     and ``grid_mask`` hides every other tile, column or row (or, inverted, shows only those).
 
     ``blending`` (the Tile Generator's Blending Mode): "max" keeps the highest shape over the
-    ``background`` level; "add" adds every shape to it; "add_sub" adds each shape's luminance less
-    the background, so darker tiles darken. ``opacity`` scales what the shapes add (Global
-    Opacity). The result is clamped to [0, 1].
+    ``background`` level; "add" adds to it each shape's luminance less the background (at least 0);
+    "add_sub" adds each shape's luminance less the background, so darker tiles darken. ``opacity``
+    scales what the shapes add (Global Opacity). The result is clamped to [0, 1].
+    ``offset_every_row``: row k is shifted by k × ``offset`` cells (k in [0, ny), the Tile
+    Generator's Offset), instead of every other row by ``offset``. ``luminance_by_number``: tile k of
+    the N, counted down each column and then across, has its luminance scaled by (k + 1) / N.
 
     ``softness`` (local units, 1 = the half size) widens hard edges beyond the one-pixel
     anti-aliasing. ``profile(x, y, w, spec, ex, ey)`` gives the shape's height at local coordinates
@@ -441,7 +453,7 @@ def tile_field(size: int, nx: int, ny: int, *, seed: int, profile: Callable, sca
         raise DiffMatError(f"tile blending {blending!r}: expected one of {', '.join(BLENDINGS)}")
     rnd = lattice_random(seed, N_RND, nx * ny, device, dtype)
     background = param4d(background, ref)
-    lum_offset = background if blending == "add_sub" else None
+    lum_offset = background if blending != "max" else None
     scale = param4d(scale, ref)
     sx, sy = _split2(size_xy, ref)
     ix, iy = _split2(interstice, ref)
@@ -485,7 +497,8 @@ def tile_field(size: int, nx: int, ny: int, *, seed: int, profile: Callable, sca
     cellv = _cell_values(nx, ny, rnd, pix, hx, hy, softness, position_random, scale_random, rotation,
                          rotation_random, luminance_random, mask_random, spec, spec_random, cr,
                          use_pos=use_pos, use_scale=use_scale, use_rot=use_rot, use_lum=use_lum,
-                         use_mask=use_mask, use_spec=use_spec, grid_mask=grid_mask, lum_offset=lum_offset)
+                         use_mask=use_mask, use_spec=use_spec, grid_mask=grid_mask, lum_offset=lum_offset,
+                         lum_floor=blending == "add", by_number=luminance_by_number)
     cellv = {k: v.reshape(v.shape[0], ny, nx) for k, v in cellv.items()}
     hx_e, hy_e = hx.clamp_min(1e-6), hy.clamp_min(1e-6)
     shape = _CellShape(profile, size, nx, use_pos, use_scale, use_rot, use_spec, hx_e, hy_e,
@@ -493,7 +506,10 @@ def tile_field(size: int, nx: int, ny: int, *, seed: int, profile: Callable, sca
     acc = None
     for dj in range(my):
         r = row0 + dj
-        shift = offset * torch.remainder(r, 2.0)  # (B|1, 1, H, 1)
+        if offset_every_row:   # whole cells of shift move no shape: only which tile's random values sit where
+            shift = torch.remainder(offset * torch.remainder(r, float(ny)), 1.0)  # (B|1, 1, H, 1)
+        else:
+            shift = offset * torch.remainder(r, 2.0)
         xs = X - shift
         c0 = torch.floor(xs + 0.5 - 0.5 * mx)
         fy = (Y - r - 0.5) / ny

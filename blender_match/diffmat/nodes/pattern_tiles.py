@@ -19,7 +19,7 @@ def _layout(pattern=8, scale=1.0):
         Param("size_xy", (1.0, 1.0), 0.0, 2.0, size=2,
               doc="non-uniform size (Substance's 'Size'; renamed: 'size' is the output size)"),
         Param("interstice", (0.0, 0.0), 0.0, 1.0, size=2, doc="gap, fraction of the cell (x, y)"),
-        Param("offset", 0.0, 0.0, 1.0, doc="alternate rows shift, cells"),
+        Param("offset", 0.0, 0.0, 1.0, doc="row k shifted by k × offset cells"),
         Param("position_random", 0.0, 0.0, 1.0, doc="jitter, cells"),
         Param("scale_random", 0.0, 0.0, 1.0),
         Param("rotation", 0.0, 0.0, 1.0, doc="turns"),
@@ -32,7 +32,8 @@ def _layout(pattern=8, scale=1.0):
         Param("vertical_mask", False, kind="bool", doc="hides every other row"),
         Param("invert_mask", False, kind="bool", doc="shows only what the masks (random mask included) hide"),
         Param("blending_mode", 0, kind="enum", choices=tuple(range(len(TILE_BLENDINGS))), doc=BLENDING_DOC),
-        Param("global_opacity", 1.0, 0.0, 1.0, optimizable=False, doc="scales what the tiles add"))
+        Param("global_opacity", 1.0, 0.0, 1.0, optimizable=False, doc="scales what the tiles add"),
+        Param("luminance_by_number", False, kind="bool", doc="fades the tiles' luminance over their order"))
 
 
 register(NodeSpec(
