@@ -37,6 +37,8 @@ TILE_LAYOUT_ALIASES: dict[str, str | tuple[str, ...]] = {
 TILE_GENERATOR_ALIASES: dict[str, str | tuple[str, ...]] = {
     **TILE_LAYOUT_ALIASES, "pattern_type": "pattern", "luminance_variation_contrast": "luminance_random",
     "pattern_size_random": "scale_random", "randommask": "mask_random",
+    # the older Tile Generator's: free rotation and its random spread in degrees (``convert_value``)
+    "free_rotation": "rotation", "free_rotation_random": "rotation_random", "scalevariation": "scale_random",
 }
 # the current Scratches Generator's "Spline" identifiers (its documentation; the Normal version
 # shares them): a count of all the scratches (converted to our cells a side, ``convert_value``), a
@@ -146,6 +148,10 @@ def convert_value(spec_name: str, param: str, identifier: str, value):
         return value / 100.0
     if param == "rotation" and spec_name in QUARTER_TURN_ROTATION and isinstance(value, int):
         return (value % 4) * 0.25
+    if norm(identifier) == "free_rotation" and isinstance(value, (int, float)):
+        return (value / 360.0) % 1.0
+    if norm(identifier) == "free_rotation_random" and isinstance(value, (int, float)):
+        return min(value / 360.0, 1.0)   # 360 degrees of spread: any angle
     if spec_name in SCRATCHES and norm(identifier) == "spline_number" and isinstance(value, (int, float)):
         return max(1, round(math.sqrt(value / 2.0)))   # two scratches a cell of an amount x amount lattice
     return value

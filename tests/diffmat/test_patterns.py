@@ -57,6 +57,23 @@ def test_tile_generator_offset_shifts_every_row_by_its_number():
                                                                   offset=0.0)[0, 0][2 * cell:3 * cell])  # alternate
 
 
+def test_tile_generator_random_row_offsets():
+    """Offset Random shifts each row by its own random amount (the reference's: up to
+    offset_random x (k + 1) / rows of the image for row k), seeded."""
+    kw = dict(x_amount=4, y_amount=4, pattern=1, interstice=(0.2, 0.2))
+    base = _render("tile_generator", **kw)[0, 0]
+    cell = S // 4
+    jittered = _render("tile_generator", offset_random=0.5, **kw)[0, 0]
+    assert torch.equal(jittered, _render("tile_generator", offset_random=0.5, **kw)[0, 0])
+    shifts = []
+    for row in range(4):
+        band = slice(row * cell, (row + 1) * cell)
+        errors = torch.stack([(jittered[band] - torch.roll(base[band], d, dims=-1)).abs().mean() for d in range(cell)])
+        assert errors.min() < 0.06, row   # each row is the plain row moved sideways (within a pixel)
+        shifts.append(int(errors.argmin()))
+    assert len(set(shifts)) > 1   # by different amounts
+
+
 def test_tile_generator_luminance_by_number_fades_the_tiles_in_order():
     """Luminance By Number: tile k of N (counted down each column, then across) at (k + 1) / N."""
     out = _render("tile_generator", x_amount=4, y_amount=4, pattern=1, scale=0.5, luminance_by_number=True)[0, 0]

@@ -51,6 +51,13 @@ def test_normalisation_and_resolution_rules():
     assert aliases.resolve_param(tile, "blending_mode") == [("blending_mode", None)]
     assert aliases.resolve_param(tile, "GlobalOpacity") == [("global_opacity", None)]
     assert aliases.resolve_param(tile, "background_color") == [("background_level", None)]   # grey here
+    # the older Tile Generator: free rotation and its spread in degrees, a scale variation
+    assert aliases.resolve_param(tile, "Free_Rotation") == [("rotation", None)]
+    assert aliases.resolve_param(tile, "Free_Rotation_Random") == [("rotation_random", None)]
+    assert aliases.resolve_param(tile, "ScaleVariation") == [("scale_random", None)]
+    assert aliases.convert_value("tile_generator", "rotation", "Free_Rotation", 45.0) == 0.125
+    assert aliases.convert_value("tile_generator", "rotation_random", "Free_Rotation_Random", 360.0) == 1.0
+    assert aliases.convert_value("tile_generator", "rotation_random", "Free_Rotation_Random", 18.0) == 0.05
     colour = get_spec("tile_generator_color")
     assert aliases.resolve_param(colour, "Nb_X") == [("x_amount", None)]           # 64 in a production granite
     assert aliases.resolve_param(colour, "Color_Variation") == [("color_random", None)]

@@ -386,6 +386,8 @@ def _combine(acc, h, vals, add: bool):
 # the fewest pixels across a cell at which ``tile_field`` samples its shapes directly; smaller cells
 # are drawn supersampled and box-filtered down (``tile_supersampling``)
 MIN_CELL_PIXELS = 8
+# the seed offset of the per-row random shifts (``tile_field(offset_random=)``), apart from the tiles'
+ROW_SEED = 7919
 # how overlapping shapes combine (``tile_field(blending=)``): the Tile Generator's Blending Mode
 BLENDINGS = ("max", "add", "add_sub")
 # supersampling never draws more than this many pixels across (memory: at 2048 px every cell of up
@@ -410,7 +412,7 @@ def tile_field(size: int, nx: int, ny: int, *, seed: int, profile: Callable, sca
                rotation_random=0.0, luminance_random=0.0, mask_random=0.0, pattern_specific=0.5,
                pattern_specific_random=0.0, softness=0.0, color_random=None, grid_mask: GridMask = GridMask(),
                own_cell: bool = False, blending: str = "max", background=0.0, opacity=1.0,
-               offset_every_row: bool = False, luminance_by_number: bool = False,
+               offset_every_row: bool = False, luminance_by_number: bool = False, offset_random=0.0,
                device=None, dtype=torch.float32):
     """A grid of ``nx`` × ``ny`` cells, one shape per cell; every alternate row is shifted right by
     ``offset`` cells. The shape fills its cell at scale 1 less the ``interstice`` gap (fraction of
@@ -425,8 +427,10 @@ def tile_field(size: int, nx: int, ny: int, *, seed: int, profile: Callable, sca
     "add_sub" adds each shape's luminance less the background, so darker tiles darken. ``opacity``
     scales what the shapes add (Global Opacity). The result is clamped to [0, 1].
     ``offset_every_row``: row k is shifted by k × ``offset`` cells (k in [0, ny), the Tile
-    Generator's Offset), instead of every other row by ``offset``. ``luminance_by_number``: tile k of
-    the N, counted down each column and then across, has its luminance scaled by (k + 1) / N.
+    Generator's Offset), instead of every other row by ``offset``; ``offset_random`` adds to row k a
+    random shift of up to ``offset_random`` × (k + 1) / ny of the image. ``luminance_by_number``:
+    tile k of the N, counted down each column and then across, has its luminance scaled by
+    (k + 1) / N.
 
     ``softness`` (local units, 1 = the half size) widens hard edges beyond the one-pixel
     anti-aliasing. ``profile(x, y, w, spec, ex, ey)`` gives the shape's height at local coordinates
@@ -492,6 +496,8 @@ def tile_field(size: int, nx: int, ny: int, *, seed: int, profile: Callable, sca
     # separable coordinates: rows depend on v only, so row quantities are (.., H, 1)
     X = (ucoord * nx).view(1, 1, 1, size)   # (1, 1, 1, W)
     Y = (ucoord * ny).view(1, 1, size, 1)   # (1, 1, H, 1)
+    offset_random = param4d(offset_random, ref)
+    row_random = lattice_random(seed + ROW_SEED, 1, ny, device, dtype)[0] if _active(offset_random) else None
     row0 = torch.floor(Y + 0.5 - 0.5 * my)
     pix = 1.0 / size
     cellv = _cell_values(nx, ny, rnd, pix, hx, hy, softness, position_random, scale_random, rotation,
@@ -510,6 +516,9 @@ def tile_field(size: int, nx: int, ny: int, *, seed: int, profile: Callable, sca
             shift = torch.remainder(offset * torch.remainder(r, float(ny)), 1.0)  # (B|1, 1, H, 1)
         else:
             shift = offset * torch.remainder(r, 2.0)
+        if row_random is not None:
+            row = torch.remainder(r, float(ny))
+            shift = shift + offset_random * row_random[row.long()] * (row + 1.0) / ny * nx
         xs = X - shift
         c0 = torch.floor(xs + 0.5 - 0.5 * mx)
         fy = (Y - r - 0.5) / ny

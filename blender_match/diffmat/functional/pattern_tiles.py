@@ -88,6 +88,7 @@ def _tile_generator(where: str, image, args: dict):
         field["background"] = args.get("background_level", 0.0)
         field["offset_every_row"] = True
         field["luminance_by_number"] = bool(args["luminance_by_number"])
+        field["offset_random"] = args["offset_random"]
     grid_mask = GridMask(checker=bool(args.get("checker_mask")), columns=bool(args.get("horizontal_mask")),
                          rows=bool(args.get("vertical_mask")), invert=bool(args.get("invert_mask")))
     return tile_field(args["size"], nx, ny, profile=profile, own_cell=_monotone(args["pattern"]),
@@ -99,8 +100,8 @@ def tile_pattern(pattern_input_1=None, *, x_amount: int = 10, y_amount: int = 10
                  position_random=0.0, scale_random=0.0, rotation=0.0, rotation_random=0.0, luminance_random=0.0,
                  mask_random=0.0, softness=0.0, checker_mask: bool = False, horizontal_mask: bool = False,
                  vertical_mask: bool = False, invert_mask: bool = False, blending_mode: int = 0,
-                 global_opacity=1.0, luminance_by_number: bool = False, background_level=0.0,
-                 size: int = 512, seed: int = 0,
+                 global_opacity=1.0, luminance_by_number: bool = False, offset_random=0.0,
+                 background_level=0.0, size: int = 512, seed: int = 0,
                  device=None, dtype=torch.float32) -> torch.Tensor:
     """Tile Generator: an ``x_amount`` × ``y_amount`` grid of one pattern (``TILE_PATTERNS``;
     0 reads ``pattern_input_1``), row k shifted by k × ``offset`` cells ("offsets the entire
@@ -110,7 +111,8 @@ def tile_pattern(pattern_input_1=None, *, x_amount: int = 10, y_amount: int = 10
     ``invert_mask`` show only what the masks hide (``GridMask``). Overlapping tiles combine by
     ``blending_mode`` (``TILE_BLENDINGS``: Add by default, as Substance's) over the
     ``background_level``, the tiles scaled by ``global_opacity``; ``luminance_by_number`` fades
-    the tiles' luminance over their order."""
+    the tiles' luminance over their order; ``offset_random`` shifts each row at random
+    (``tile_field``)."""
     out, _ = _tile_generator("tile_generator", pattern_input_1, locals())
     return out
 
@@ -121,7 +123,7 @@ def tile_pattern_color(pattern_input_1=None, *, x_amount: int = 10, y_amount: in
                        luminance_random=0.0, mask_random=0.0, softness=0.0, checker_mask: bool = False,
                        horizontal_mask: bool = False, vertical_mask: bool = False, invert_mask: bool = False,
                        blending_mode: int = 0, global_opacity=1.0, luminance_by_number: bool = False,
-                       color_random=1.0,
+                       offset_random=0.0, color_random=1.0,
                        pattern_color=(1.0, 1.0, 1.0, 1.0), background_color=(0.0, 0.0, 0.0, 1.0),
                        size: int = 512, seed: int = 0, device=None, dtype=torch.float32) -> torch.Tensor:
     """Tile Generator Color: the tile layout of ``tile_pattern``; each tile takes

@@ -33,7 +33,9 @@ def _layout(pattern=8, scale=1.0):
         Param("invert_mask", False, kind="bool", doc="shows only what the masks (random mask included) hide"),
         Param("blending_mode", 0, kind="enum", choices=tuple(range(len(TILE_BLENDINGS))), doc=BLENDING_DOC),
         Param("global_opacity", 1.0, 0.0, 1.0, optimizable=False, doc="scales what the tiles add"),
-        Param("luminance_by_number", False, kind="bool", doc="fades the tiles' luminance over their order"))
+        Param("luminance_by_number", False, kind="bool", doc="fades the tiles' luminance over their order"),
+        Param("offset_random", 0.0, 0.0, 1.0, optimizable=False,
+              doc="row k shifted at random by up to offset_random x (k + 1) / rows of the image"))
 
 
 register(NodeSpec(
