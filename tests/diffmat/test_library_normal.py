@@ -102,19 +102,6 @@ def test_ambient_occlusion_2_flat_is_one_and_pit_is_dark():
     assert ao[0, 0, 16, 16] < 0.9 and ao[0, 0, 0, 0] > 0.99
 
 
-def test_ambient_occlusion_2_levels_are_the_atomic_levels():
-    """The MATch reference ends Ambient Occlusion with the atomic Levels (in low, in mid, in high):
-    a mid of 0.5 is a plain linear window whatever the low and high (before, the mid was taken
-    inside the window: (0.513, 0.5, 1) gave a gamma of 0.15 and turned a production file's cracks
-    white), and a mid of 0.25 the Levels gamma 1/5."""
-    pit = 1 - bump()
-    plain = F.ambient_occlusion(pit, height_depth=0.5, spreading=0.5)
-    window = F.ambient_occlusion(pit, height_depth=0.5, spreading=0.5, levels=(0.513, 0.5, 1.0))
-    torch.testing.assert_close(window, ((plain - 0.513) / 0.487).clamp(0, 1), atol=1e-5, rtol=0)
-    bright = F.ambient_occlusion(pit, height_depth=0.5, spreading=0.5, levels=(0.0, 0.25, 1.0))
-    torch.testing.assert_close(bright, plain ** 0.2, atol=1e-4, rtol=0)
-
-
 def test_edge_detect_finds_square_contour():
     """Black lines on white unless inverted: the MATch reference's Edge Detect ends by inverting
     the lines it found (its ``invert`` inverts them back)."""

@@ -15,7 +15,6 @@ import math
 import torch
 
 from ..errors import DiffMatError
-from . import tone
 from .common import (
     COLOR,
     check_bool,
@@ -253,8 +252,7 @@ def ambient_occlusion(source: torch.Tensor, *, height_depth=0.15, spreading=0.15
     """Ambient Occlusion (the older, blur-based version): occlusion is how far the neighbourhood
     average (Gaussian, three scales up to ``spreading`` x 0.25 image widths, weighted low / mid /
     high by ``equalizer``) rises above the height, times ``height_depth`` x 8. ``levels``
-    (in low, in mid, in high) remaps the result through the atomic Levels (``tone.levels``: mid
-    the Levels gamma, as the MATch reference applies it). Flat height gives 1."""
+    (low, mid, high) remaps the result, mid as a gamma. Flat height gives 1."""
     h = to_gray(source)
     size = h.shape[-1]
     fx, fy = frequencies(size, h.device, h.dtype)
@@ -268,7 +266,11 @@ def ambient_occlusion(source: torch.Tensor, *, height_depth=0.15, spreading=0.15
     rise = torch.fft.irfft2(torch.fft.rfft2(h) * transfer, s=h.shape[-2:]) / len(AO_SCALES)
     ao = (1.0 - rise.clamp_min(0.0) * param4d(height_depth, h) * 8.0).clamp(0.0, 1.0)
     lv = param4d(levels, h)
-    return tone.levels(ao, levelinlow=lv[:, 0:1], levelinmid=lv[:, 1:2], levelinhigh=lv[:, 2:3])
+    lo, mid, hi = lv[:, 0:1], lv[:, 1:2], lv[:, 2:3]
+    x = ((ao - lo) / (hi - lo).clamp_min(1e-3)).clamp(1e-6, 1.0)
+    m = ((mid - lo) / (hi - lo).clamp_min(1e-3)).clamp(0.01, 0.99)
+    gamma = math.log(0.5) / torch.log(m)
+    return (x ** gamma).clamp(0.0, 1.0)
 
 
 EDGE_GATE = (0.02, 0.05)  # steps this far above the tolerance start to draw a line, and draw a full one

@@ -58,7 +58,7 @@ register(NodeSpec(
     inputs=(Input("source"),), outputs=("ambient_occlusion",),
     params=(Param("height_depth", 0.15), Param("spreading", 0.15),
             Param("equalizer", (0.5, 0.5, 0.5), size=3, doc="low, mid, high scale weights"),
-            Param("levels", (0.0, 0.5, 1.0), size=3, doc="Levels in low, in mid (its gamma), in high")),
+            Param("levels", (0.0, 0.5, 1.0), size=3, doc="low, mid (gamma), high")),
     doc="Ambient Occlusion (blur-based)."))
 
 register(NodeSpec(
