@@ -148,11 +148,12 @@ def convert_value(spec_name: str, param: str, identifier: str, value):
         return value / 100.0
     if param == "rotation" and spec_name in QUARTER_TURN_ROTATION and isinstance(value, int):
         return (value % 4) * 0.25
-    if norm(identifier) == "free_rotation" and isinstance(value, (int, float)):
+    ident = norm(identifier)
+    if ident == "free_rotation" and isinstance(value, (int, float)):
         return (value / 360.0) % 1.0
-    if norm(identifier) == "free_rotation_random" and isinstance(value, (int, float)):
+    if ident == "free_rotation_random" and isinstance(value, (int, float)):
         return min(value / 360.0, 1.0)   # 360 degrees of spread: any angle
-    if spec_name in SCRATCHES and norm(identifier) == "spline_number" and isinstance(value, (int, float)):
+    if spec_name in SCRATCHES and ident == "spline_number" and isinstance(value, (int, float)):
         return max(1, round(math.sqrt(value / 2.0)))   # two scratches a cell of an amount x amount lattice
     return value
 

@@ -41,5 +41,5 @@ def metal_reflectance(*, metal_color: int = 0, size: int = 512, device=None, dty
     if isinstance(metal_color, bool) or metal_color not in range(len(METALS)):
         raise DiffMatError(f"pbr_metal_reflectance.metal_color: unknown value {metal_color!r}; "
                            f"expected 0-{len(METALS) - 1} ({', '.join(METALS)})")
-    rgba = torch.tensor((*METAL_F0_SRGB[METALS[int(metal_color)]], 1.0), device=device, dtype=dtype)
-    return rgba[None, :, None, None].expand(1, 4, size, size)
+    return uniform_color(outputcolor=(*METAL_F0_SRGB[METALS[int(metal_color)]], 1.0), size=size, device=device,
+                         dtype=dtype)

@@ -303,10 +303,9 @@ def _cell_values(nx, ny, rnd, pix, hx, hy, softness, position_random, scale_rand
         fac: float | torch.Tensor = 1.0
         if use_lum:
             fac = 1.0 - pc(luminance_random) * rnd[RND_LUM]
-        if by_number:
-            row, col = torch.div(torch.arange(nx * ny, device=rnd.device), nx, rounding_mode="floor"), \
-                torch.arange(nx * ny, device=rnd.device) % nx
-            fac = fac * ((col * ny + row + 1).to(rnd.dtype) / (nx * ny))
+        if by_number:   # tile k of the N counted down each column: k = column x ny + row, row-major cells
+            k = torch.arange(nx, device=rnd.device).view(1, nx) * ny + torch.arange(ny, device=rnd.device).view(ny, 1)
+            fac = fac * ((k.reshape(1, -1) + 1).to(rnd.dtype) / (nx * ny))
         if lum_offset is not None:
             shifted = fac - pc(lum_offset) + rnd.new_zeros(1, nx * ny)   # one value a cell, whatever came before
             fac = shifted.clamp_min(0.0) if lum_floor else shifted
@@ -512,12 +511,12 @@ def tile_field(size: int, nx: int, ny: int, *, seed: int, profile: Callable, sca
     acc = None
     for dj in range(my):
         r = row0 + dj
+        row = torch.remainder(r, float(ny))   # the row's index in the tile, (B|1, 1, H, 1)
         if offset_every_row:   # whole cells of shift move no shape: only which tile's random values sit where
-            shift = torch.remainder(offset * torch.remainder(r, float(ny)), 1.0)  # (B|1, 1, H, 1)
+            shift = torch.remainder(offset * row, 1.0)
         else:
             shift = offset * torch.remainder(r, 2.0)
         if row_random is not None:
-            row = torch.remainder(r, float(ny))
             shift = shift + offset_random * row_random[row.long()] * (row + 1.0) / ny * nx
         xs = X - shift
         c0 = torch.floor(xs + 0.5 - 0.5 * mx)
