@@ -2,7 +2,8 @@
 
 Each material is written in Python in ``sources/<name>.py`` (the authoring contract: a module
 docstring, ``build() -> SbsGraph``,
-``FAMILY`` (a key of ``catalog.FAMILIES``) and ``SAMPLE_RANGES``), exported by
+``FAMILY`` (a key of ``catalog.FAMILIES``), ``SAMPLE_RANGES`` and optionally ``SAMPLE_TOGETHER``,
+the listed colours drawn as a line rather than channel by channel), exported by
 ``python -m blender_match.library.build`` to ``graphs/<name>.sbs`` (the Substance document) and
 ``graphs/<name>.json`` (metadata: node and parameter counts, exposed parameters, sampling ranges
 keyed by the parameter names of the graph as ``load_sbs_graph`` returns it). At run time only the

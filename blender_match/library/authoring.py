@@ -6,7 +6,7 @@ from __future__ import annotations
 
 from ..translator.runtime import SbsGraph
 from ..vocabulary import ANISOTROPY, ANISOTROPY_ANGLE, AUTHORED_USAGES
-from .expressions import Expr, const, gray4
+from .expressions import Expr, const, gray4, minimum, vector
 
 # Substance's blending-mode codes (the blend node's ``blendingmode``)
 COPY, ADD, SUBTRACT, MULTIPLY, ADD_SUB, MAX, MIN, SWITCH, DIVIDE, OVERLAY, SCREEN, SOFT_LIGHT = range(12)
@@ -73,6 +73,21 @@ def gradient_over(g: SbsGraph, name: str, tones_name: str, source: str, stops, d
         inputs["opacity"] = mask
     g.add(name, "blend", inputs, **blend)
     return name
+
+
+def grain_tones(g: SbsGraph, prefix: str, color: Expr, mask: str, dark: float, light: float, dark_rgb,
+                light_rgb) -> str:
+    """A wood's two tones picked by its grain: the uniform nodes ``{prefix}_dark`` (``color`` x
+    ``dark``) and ``{prefix}_light`` (``color`` x ``light``, clamped to 1; authored values
+    ``dark_rgb`` and ``light_rgb``), the light one blended over the dark one through ``mask`` by
+    the node ``{prefix}_base`` (returned)."""
+    g.add(f"{prefix}_dark", "uniform", outputcolor=(*dark_rgb, 1.0))
+    g.bind(f"{prefix}_dark", "outputcolor", vector(color * dark, 1.0).graph())
+    g.add(f"{prefix}_light", "uniform", outputcolor=(*light_rgb, 1.0))
+    g.bind(f"{prefix}_light", "outputcolor", vector(minimum(color * light, const((1.0, 1.0, 1.0))), 1.0).graph())
+    g.add(f"{prefix}_base", "blend", {"source": f"{prefix}_light", "destination": f"{prefix}_dark", "opacity": mask},
+          blendingmode=COPY, opacitymult=1.0)
+    return f"{prefix}_base"
 
 
 def ao_darken(g: SbsGraph, name: str, destination: str, floor: float, opacitymult: float,

@@ -20,7 +20,8 @@ file back with the translator (``load_sbs_graph``, mode exposed_plus) and writes
 - ``sample_together``: the vector parameters given that default spread (colours the source did not
   list): their components are drawn with one shared fraction of their ranges, so a grey stays grey
   in every variant instead of taking a random tint (a listed range is drawn per component: an
-  author who lists one means the components to vary apart, as a dye of any hue does);
+  author who lists one means the components to vary apart, as a dye of any hue does, unless the
+  source's ``SAMPLE_TOGETHER`` names it: a listed line of colours, dark walnut to blond wood);
 - ``node_names``: source node name -> translated node name.
 
 It refuses a source whose round trip is not exact in structure (the translated graph must be the
@@ -88,9 +89,10 @@ def _real(t) -> list[float]:
     return [float(x) for x in t.detach().reshape(-1)]
 
 
-def sample_ranges(translated, mapping: dict[str, str], declared: dict, name: str) -> dict:
+def sample_ranges(translated, mapping: dict[str, str], declared: dict, name: str, declared_together=()) -> dict:
     """``{"sample_ranges", "sample_together"}`` of the translated graph's optimisable parameters
-    (see the module doc)."""
+    (see the module doc); ``declared_together``: listed vector parameters drawn together all the
+    same."""
     out: dict[str, list] = {}
     slots, listed = {}, set()
     exposed_values = translated.exposed.values()
@@ -128,7 +130,11 @@ def sample_ranges(translated, mapping: dict[str, str], declared: dict, name: str
         los = [max(plo, a) for a in los]
         his = [min(phi, b) for b in his]
         out[tkey] = [los[0], his[0]] if k == 1 else [los, his]
-        listed.add(tkey)
+        if key not in declared_together:
+            listed.add(tkey)
+    unknown = sorted(set(declared_together) - set(declared))
+    if unknown:
+        raise DiffMatError(f"sources/{name}.py: SAMPLE_TOGETHER names {', '.join(unknown)}, not in SAMPLE_RANGES")
     together = sorted(key for key, (value, _, _) in slots.items() if len(value) > 1 and key not in listed)
     return {"sample_ranges": {k: _rounded(v) for k, v in sorted(out.items())}, "sample_together": together}
 
@@ -195,7 +201,7 @@ def build_one(name: str) -> tuple[str, str]:
     mapping = match_nodes(graph, translated)
     meta = {"name": name, "file": f"{name}.sbs", "description": description, "family": family,
             **graph_summary(translated),
-            **sample_ranges(translated, mapping, declared, name),
+            **sample_ranges(translated, mapping, declared, name, getattr(module, "SAMPLE_TOGETHER", ())),
             "node_names": dict(sorted(mapping.items()))}
     return text, json.dumps(meta, indent=1) + "\n"
 

@@ -30,7 +30,7 @@ from .predictor import load_predictor, predictor_is_current
 METHODS = ("predictor", "bank", "both")
 RANK_SIZE = 128
 TIE_TOLERANCE = 0.02
-SHORTLIST = 8  # graphs the selection index lets through to be rendered (see docs/benchmarks.md)
+SHORTLIST = 10  # graphs the selection index lets through to be rendered (see docs/benchmarks.md)
 NO_MODELS = ("automatic graph selection needs the selection models (parameter predictors or sample banks) "
              "and none were found in {where}; create them with `blender-match train --all`")
 

@@ -209,6 +209,21 @@ def test_unlisted_colours_keep_their_hue_in_every_variant():
             assert len(fractions) <= 1, (key, variant[key])
 
 
+def test_a_listed_colour_named_together_stays_on_its_line():
+    """A source's SAMPLE_TOGETHER keeps a listed colour range as a line (varnished wood: dark
+    walnut to blond, never a green or purple wood), while a listed range it does not name is drawn
+    channel by channel."""
+    entry = library_entry("varnished_wood")
+    assert "exposed.wood_color" in entry["sample_together"]
+    lo, hi = entry["sample_ranges"]["exposed.wood_color"]
+    for k in range(6):
+        color = sample_params("varnished_wood", k)["exposed.wood_color"]
+        fractions = [(v - a) / (b - a) for v, a, b in zip(color, lo, hi)]
+        assert max(fractions) - min(fractions) < 1e-3, color
+        assert color[0] > color[1] > color[2], color
+    assert "exposed.paint_color" not in library_entry("painted_metal")["sample_together"]
+
+
 def test_unlisted_parameters_vary_around_their_value():
     from blender_match.library.build import default_spread
 

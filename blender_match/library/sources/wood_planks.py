@@ -35,9 +35,10 @@ from blender_match.library.authoring import (
     color_over,
     constant_map,
     gradient_over,
+    grain_tones,
     set_material_outputs,
 )
-from blender_match.library.expressions import const, get, lerp, minimum, vector
+from blender_match.library.expressions import get, lerp
 from blender_match.translator.runtime import SbsGraph
 
 
@@ -73,12 +74,7 @@ def build() -> SbsGraph:
 
     # ---- colour ------------------------------------------------------------------------------
     wood = get("wood_color", 3)
-    g.add("wood_dark", "uniform", outputcolor=(0.22, 0.14, 0.08, 1.0))
-    g.bind("wood_dark", "outputcolor", vector(wood * 0.6, 1.0).graph())
-    g.add("wood_light", "uniform", outputcolor=(0.62, 0.43, 0.26, 1.0))
-    g.bind("wood_light", "outputcolor", vector(minimum(wood * 1.25, const((1.0, 1.0, 1.0))), 1.0).graph())
-    g.add("wood_base", "blend", {"source": "wood_light", "destination": "wood_dark", "opacity": "grain"},
-          blendingmode=COPY, opacitymult=1.0)
+    grain_tones(g, "wood", wood, "grain", 0.6, 1.25, (0.22, 0.14, 0.08), (0.62, 0.43, 0.26))
     gradient_over(g, "wood_planked", "plank_tone", "plank_id", [
         (0.0, (0.26, 0.25, 0.27)), (0.3, (0.46, 0.44, 0.42)), (0.65, (0.56, 0.51, 0.45)),
         (1.0, (0.74, 0.64, 0.50))], "wood_base", blendingmode=OVERLAY, opacitymult=0.55)
