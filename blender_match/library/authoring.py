@@ -6,7 +6,7 @@ from __future__ import annotations
 
 from ..translator.runtime import SbsGraph
 from ..vocabulary import ANISOTROPY, ANISOTROPY_ANGLE, AUTHORED_USAGES
-from .expressions import Expr, const, gray4, minimum, vector
+from .expressions import Expr, const, get, gray4, minimum, vector
 
 # Substance's blending-mode codes (the blend node's ``blendingmode``)
 COPY, ADD, SUBTRACT, MULTIPLY, ADD_SUB, MAX, MIN, SWITCH, DIVIDE, OVERLAY, SCREEN, SOFT_LIGHT = range(12)
@@ -37,6 +37,22 @@ def set_material_outputs(g: SbsGraph, ambient_occlusion: str | None = None, anis
         g.set_output(usage, usage)
     if ambient_occlusion:
         g.set_output("ambientocclusion", ambient_occlusion)
+
+
+def dielectric_tail(g: SbsGraph, height: str, intensity: float, relief: Expr, sheen_source: str, sheen_range: float,
+                    roughness: float) -> None:
+    """The tail of a one-layer dielectric: the normal node ``normal`` of ``height`` (OpenGL,
+    authored ``intensity``) bound to the expression ``relief``; the roughness a narrow histogram
+    range (``sheen_range`` wide, node ``rough``) of ``sheen_source`` centred on the exposed
+    ``roughness`` (authored ``roughness``), passed to the node ``roughness``; metallic 0; the five
+    material outputs named."""
+    g.add("normal", "normal", {"input1": height}, intensity=intensity, inversedy=True)
+    g.bind("normal", "intensity", relief.graph())
+    g.add("rough", "histogram_range", {"input": sheen_source}, range=sheen_range, position=roughness)
+    g.bind("rough", "position", get("roughness").graph())
+    g.add("roughness", "passthrough", {"input": "rough"})
+    constant_map(g, "metallic", 0.0)
+    set_material_outputs(g)
 
 
 def brushing(g: SbsGraph, level: Expr, angle: float) -> None:

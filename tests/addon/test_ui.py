@@ -270,7 +270,7 @@ def _ops(drawn) -> list[str]:
 
 def test_library_thumbnails_exist_for_every_graph():
     names = sorted(p.stem for p in GRAPHS.glob("*.json") if (GRAPHS / f"{p.stem}.sbs").is_file())
-    assert len(names) == 49
+    assert len(names) == 50
     for name in names:
         png = (GRAPHS / f"{name}.png").read_bytes()
         assert png[:8] == b"\x89PNG\r\n\x1a\n", name

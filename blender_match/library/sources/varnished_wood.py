@@ -29,10 +29,9 @@ from blender_match.library.authoring import (
     MULTIPLY,
     SOFT_LIGHT,
     color_over,
-    constant_map,
+    dielectric_tail,
     gradient_over,
     grain_tones,
-    set_material_outputs,
 )
 from blender_match.library.expressions import const, get, lerp, vector
 from blender_match.translator.runtime import SbsGraph
@@ -47,7 +46,7 @@ def build() -> SbsGraph:
     g.expose("relief", 0.25, min=0.0, max=1.0)
     g.expose("stain", 0.3, min=0.0, max=1.0)
 
-    # ---- grain -------------------------------------------------------------------------------
+    # ---- grain -----------------------------------------------------------------------------------
     g.add("lines_coarse", "anisotropic_noise", seed=21, x_amount=3, y_amount=64, smoothness=0.6)
     g.add("lines_fine", "anisotropic_noise", seed=25, x_amount=4, y_amount=192, smoothness=0.5)
     g.add("lines", "blend", {"source": "lines_fine", "destination": "lines_coarse"},
@@ -63,7 +62,7 @@ def build() -> SbsGraph:
     g.add("pore_src", "anisotropic_noise", seed=24, x_amount=48, y_amount=256, smoothness=0.4)
     g.add("pores", "histogram_scan", {"input_1": "pore_src"}, position=0.8, contrast=0.7, invert_position=True)
 
-    # ---- colour ------------------------------------------------------------------------------
+    # ---- colour ----------------------------------------------------------------------------------
     stain = get("stain")
     wood = get("wood_color", 3) * vector(const(1.0), 1.0 - 0.45 * stain, 1.0 - 0.55 * stain)
     grain_tones(g, "wood", wood, "grain", 0.6, 1.1, (0.25, 0.13, 0.06), (0.46, 0.24, 0.11))
@@ -75,21 +74,14 @@ def build() -> SbsGraph:
                blendingmode=MULTIPLY, opacitymult=0.6)
     g.bind("basecolor", "opacitymult", lerp(0.2, 0.9, get("grain_contrast")).graph())
 
-    # ---- height and normal ----------------------------------------------------------------------
+    # ---- height ----------------------------------------------------------------------------------
     g.add("height_grain", "histogram_range", {"input": "grain"}, range=0.3, position=0.6)
     g.add("pore_depth", "uniform", colorswitch=False, outputcolor=(0.0, 0.0, 0.0, 1.0))
     g.add("height", "blend", {"source": "pore_depth", "destination": "height_grain", "opacity": "pores"},
           blendingmode=COPY, opacitymult=0.5)
-    g.add("normal", "normal", {"input1": "height"}, intensity=2.0, inversedy=True)
-    g.bind("normal", "intensity", lerp(0.0, 5.0, get("relief")).graph())
 
-    # ---- roughness and metallic ---------------------------------------------------------------
-    g.add("rough", "histogram_range", {"input": "pores"}, range=0.1, position=0.18)
-    g.bind("rough", "position", get("roughness").graph())
-    g.add("roughness", "passthrough", {"input": "rough"})
-    constant_map(g, "metallic", 0.0)
-
-    set_material_outputs(g)
+    # ---- normal, roughness and metallic ----------------------------------------------------------
+    dielectric_tail(g, "height", 2.0, lerp(0.0, 5.0, get("relief")), "pores", 0.1, 0.18)
     return g
 
 
