@@ -91,8 +91,8 @@ def _real(t) -> list[float]:
 
 def sample_ranges(translated, mapping: dict[str, str], declared: dict, name: str, declared_together=()) -> dict:
     """``{"sample_ranges", "sample_together"}`` of the translated graph's optimisable parameters
-    (see the module doc); ``declared_together``: listed vector parameters drawn together all the
-    same."""
+    (see the module doc); ``declared_together`` (the source's ``SAMPLE_TOGETHER``): listed vector
+    parameters whose components are drawn with one shared fraction of their ranges all the same."""
     out: dict[str, list] = {}
     slots, listed = {}, set()
     exposed_values = translated.exposed.values()
