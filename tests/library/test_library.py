@@ -17,6 +17,7 @@ import torch
 from imagecheck import assert_tiles
 
 from blender_match.cli import main
+from blender_match.diffmat.errors import DiffMatError
 from blender_match.diffmat.params_file import apply_params, load_params
 from blender_match.diffmat.render import render_maps
 from blender_match.library import (
@@ -28,7 +29,7 @@ from blender_match.library import (
     sample_params,
     source_names,
 )
-from blender_match.library.build import build_one
+from blender_match.library.build import build_one, sample_ranges
 
 SOURCES = source_names()
 USAGES = {"basecolor", "normal", "roughness", "metallic", "height"}
@@ -222,6 +223,12 @@ def test_a_listed_colour_named_together_stays_on_its_line():
         assert max(fractions) - min(fractions) < 1e-3, color
         assert color[0] > color[1] > color[2], color
     assert "exposed.paint_color" not in library_entry("painted_metal")["sample_together"]
+
+
+def test_sample_together_must_name_a_listed_range():
+    graph = load_library_graph("varnished_wood")
+    with pytest.raises(DiffMatError, match="SAMPLE_TOGETHER names exposed.tint, not in SAMPLE_RANGES"):
+        sample_ranges(graph, {}, {}, "varnished_wood", ("exposed.tint",))
 
 
 def test_unlisted_parameters_vary_around_their_value():
