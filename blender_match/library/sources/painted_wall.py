@@ -9,7 +9,8 @@ Structure
 - Colour: the exposed paint colour, a touch lighter on the stipple's crests (the roller leaves
   more pigment there) and mottled very slightly by the clouds; the specks darker.
 - Height: the stipple plus the undulation; normal from it (OpenGL, inverted Y).
-- Roughness: the paint's sheen (matte to eggshell), the pits a little rougher. Metallic 0.
+- Roughness: the paint's sheen (matte to eggshell), the stipple's crests a little rougher than
+  its pits. Metallic 0.
 
 Exposed parameters
 - ``paint_color`` (float3): the paint colour.

@@ -11,7 +11,7 @@ Structure
   to walnut, reddened by the stain towards mahogany); the fibres streak it; the pores darker
   still; a cloud noise gives the board's slow variation of tone.
 - Height: the varnish levels the surface, so the relief is shallow: the pores a little sunk and
-  the grain lines barely raised; normal from it (OpenGL, inverted Y).
+  the latewood lines a hair lower than the earlywood; normal from it (OpenGL, inverted Y).
 - Roughness: the coat's, low and almost even; the pores, which the varnish fills less, a little
   rougher. Metallic 0.
 
