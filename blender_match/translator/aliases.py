@@ -39,6 +39,7 @@ TILE_GENERATOR_ALIASES: dict[str, str | tuple[str, ...]] = {
     "pattern_size_random": "scale_random", "randommask": "mask_random",
     # the older Tile Generator's: free rotation and its random spread in degrees (``convert_value``)
     "free_rotation": "rotation", "free_rotation_random": "rotation_random", "scalevariation": "scale_random",
+    "luminancebyscalevariation": "luminance_by_scale",
 }
 # the current Scratches Generator's "Spline" identifiers (its documentation; the Normal version
 # shares them): a count of all the scratches (converted to our cells a side, ``convert_value``), a
@@ -152,7 +153,7 @@ def convert_value(spec_name: str, param: str, identifier: str, value):
     if ident == "free_rotation" and isinstance(value, (int, float)):
         return (value / 360.0) % 1.0
     if ident == "free_rotation_random" and isinstance(value, (int, float)):
-        return min(value / 360.0, 1.0)   # 360 degrees of spread: any angle
+        return min(value / 720.0, 0.5)   # a spread of that many degrees in all, ± half of it: 360 is any angle
     if spec_name in SCRATCHES and ident == "spline_number" and isinstance(value, (int, float)):
         return max(1, round(math.sqrt(value / 2.0)))   # two scratches a cell of an amount x amount lattice
     return value

@@ -82,6 +82,75 @@ def test_tile_generator_luminance_by_number_fades_the_tiles_in_order():
     torch.testing.assert_close(centres, expected.float())
 
 
+def test_tile_generator_reverse_rendering_order_reverses_the_random_values():
+    """Reverse Rendering Order: the tiles take their random values (and their number) in the
+    reverse order; a layout without randomness is unchanged."""
+    kw = dict(x_amount=4, y_amount=4, pattern=1, scale=0.5)
+    plain = _render("tile_generator", **kw)[0, 0]
+    torch.testing.assert_close(_render("tile_generator", reverse_rendering_order=True, **kw)[0, 0], plain)
+    fwd = _render("tile_generator", luminance_random=1.0, **kw)[0, 0][S // 8::S // 4, S // 8::S // 4]
+    rev = _render("tile_generator", luminance_random=1.0, reverse_rendering_order=True, **kw)[0, 0]
+    rev = rev[S // 8::S // 4, S // 8::S // 4]
+    # cell (row, column) k = column x 4 + row takes tile 15 - k's values: the grid turned half round
+    torch.testing.assert_close(rev, fwd.flip(0).flip(1))
+    numbered = _render("tile_generator", luminance_by_number=True, reverse_rendering_order=True, **kw)[0, 0]
+    expected = (16 - (torch.arange(4)[None, :] * 4 + torch.arange(4)[:, None])) / 16
+    torch.testing.assert_close(numbered[S // 8::S // 4, S // 8::S // 4], expected.float())
+
+
+def test_tile_generator_vertical_offset_shifts_columns_down():
+    """Vertical Offset: column k moves down by k × offset cells (the MATch reference) where
+    otherwise row k moves across; with no offset the layout is the same either way, whatever the
+    pattern's asymmetry or rotation."""
+    kw = dict(x_amount=8, y_amount=4, pattern=9, rotation=0.1, size_xy=(0.9, 0.6), interstice=(0.1, 0.0))
+    torch.testing.assert_close(_render("tile_generator", vertical_offset=True, **kw), _render("tile_generator", **kw))
+    kw = dict(x_amount=4, y_amount=4, pattern=1, interstice=(0.2, 0.2))
+    base = _render("tile_generator", **kw)[0, 0]
+    off = _render("tile_generator", offset=0.25, vertical_offset=True, **kw)[0, 0]
+    cell = S // 4
+    for column in range(4):
+        band = slice(column * cell, (column + 1) * cell)
+        shift = round(column * 0.25 * cell)
+        torch.testing.assert_close(off[:, band], torch.roll(base[:, band], shift, dims=-2))
+
+
+def test_tile_generator_global_offset_moves_the_layout():
+    kw = dict(x_amount=4, y_amount=2, pattern=8, offset=0.5)
+    moved = _render("tile_generator", global_offset=(0.25, 0.125), **kw)
+    torch.testing.assert_close(moved, torch.roll(_render("tile_generator", **kw), (S // 8, S // 4), dims=(-2, -1)))
+
+
+def test_tile_generator_position_and_rotation_random_spread_as_the_reference():
+    """Position Random: ± that many cells, per axis; Rotation Random: ± that many turns (the MATch
+    reference's `(2r - 1) x amount`). A jitter along x only keeps every row on its line; a
+    spread past one cell folds into ± 1 cell and still scatters the tiles."""
+    kw = dict(x_amount=4, y_amount=4, pattern=2, scale=0.4)
+    along_x = _render("tile_generator", position_random=(1.0, 0.0), **kw)[0, 0]
+    plain = _render("tile_generator", **kw)[0, 0]
+    assert torch.equal(along_x.amax(dim=1) > 0.5, plain.amax(dim=1) > 0.5)   # the same rows hold discs
+    assert not torch.allclose(along_x, plain)
+    with torch.no_grad():   # a production file's 10 (a translated graph widens the node's range)
+        wide = F.tile_pattern(position_random=(10.0, 10.0), size=S, **kw)[0, 0]
+    assert abs(wide.mean().item() - plain.mean().item()) < 0.03   # scattered, none lost
+    r = torch.tensor([0.0, 0.25, 0.5, 1.0])
+    from blender_match.diffmat.functional.pattern_shapes import jitter_cells
+    torch.testing.assert_close(jitter_cells(torch.tensor(0.8), r), torch.tensor([-0.8, -0.4, 0.0, 0.8]))
+    assert (jitter_cells(torch.tensor(10.0), torch.rand(1000)).abs() <= 1.0).all()
+    # Brick bars turned by up to ± 1/8 turn: some tiles lean each way by more than 1/16 turn
+    bars = dict(x_amount=4, y_amount=4, pattern=1, size_xy=(1.0, 0.15), scale=0.8, seed=3)
+    half = _render("tile_generator", rotation_random=0.125, **bars)
+    quarter = _render("tile_generator", rotation_random=0.0625, **bars)
+    straight = _render("tile_generator", **bars)
+    assert (half - straight).abs().mean() > (quarter - straight).abs().mean() > 0.0
+
+
+def test_tile_generator_luminance_by_scale_dims_the_smaller_tiles():
+    kw = dict(x_amount=4, y_amount=4, pattern=1, scale=0.8, scale_random=0.8)
+    plain = _render("tile_generator", **kw)[0, 0][S // 8::S // 4, S // 8::S // 4]
+    dimmed = _render("tile_generator", luminance_by_scale=True, **kw)[0, 0][S // 8::S // 4, S // 8::S // 4]
+    assert torch.equal(plain, torch.ones_like(plain)) and dimmed.min() < 0.6 and dimmed.max() <= 1.0
+
+
 def test_tile_generator_add_adds_each_tile_above_the_background():
     """Under Add, a tile adds its luminance less the background (at least 0); Max keeps the higher."""
     kw = dict(x_amount=4, y_amount=4, pattern=1, scale=0.5, luminance_random=1.0, background_level=0.4)
@@ -374,8 +443,8 @@ def test_scratches_bands_match_full_evaluation_and_wrap():
     size_xy = torch.tensor([1.4, 0.02])
     ref = None
     for layer in range(2):
-        h, _ = tile_field(size, n, n, seed=5 * 2 + layer + 1, profile=line, size_xy=size_xy, position_random=0.5,
-                          scale_random=0.5, rotation=0.0, rotation_random=0.5, luminance_random=0.5,
+        h, _ = tile_field(size, n, n, seed=5 * 2 + layer + 1, profile=line, size_xy=size_xy, position_random=0.25,
+                          scale_random=0.5, rotation=0.0, rotation_random=0.25, luminance_random=0.5,
                           offset=0.5 * layer)
         ref = h if ref is None else torch.maximum(ref, h)
     assert (out - ref).abs().max() < 1e-4

@@ -56,8 +56,14 @@ def test_normalisation_and_resolution_rules():
     assert aliases.resolve_param(tile, "Free_Rotation_Random") == [("rotation_random", None)]
     assert aliases.resolve_param(tile, "ScaleVariation") == [("scale_random", None)]
     assert aliases.convert_value("tile_generator", "rotation", "Free_Rotation", 45.0) == 0.125
-    assert aliases.convert_value("tile_generator", "rotation_random", "Free_Rotation_Random", 360.0) == 1.0
-    assert aliases.convert_value("tile_generator", "rotation_random", "Free_Rotation_Random", 18.0) == 0.05
+    # a spread of that many degrees in all: ± half of it, in turns (360: any angle)
+    assert aliases.convert_value("tile_generator", "rotation_random", "Free_Rotation_Random", 360.0) == 0.5
+    assert aliases.convert_value("tile_generator", "rotation_random", "Free_Rotation_Random", 720.0) == 0.5
+    assert aliases.convert_value("tile_generator", "rotation_random", "Free_Rotation_Random", 36.0) == 0.05
+    assert aliases.resolve_param(tile, "LuminanceByScaleVariation") == [("luminance_by_scale", None)]
+    assert aliases.resolve_param(tile, "Vertical_Offset") == [("vertical_offset", None)]
+    assert aliases.resolve_param(tile, "Global_Offset") == [("global_offset", None)]
+    assert aliases.resolve_param(tile, "reverse_rendering_order") == [("reverse_rendering_order", None)]
     colour = get_spec("tile_generator_color")
     assert aliases.resolve_param(colour, "Nb_X") == [("x_amount", None)]           # 64 in a production granite
     assert aliases.resolve_param(colour, "Color_Variation") == [("color_random", None)]

@@ -208,6 +208,15 @@ def _split2(value, ref):
     return t[:, 0:1], t[:, 1:2]
 
 
+def jitter_cells(spread: torch.Tensor, r: torch.Tensor) -> torch.Tensor:
+    """A tile's position jitter in cells: ``spread`` × (2r - 1), uniform over ± ``spread`` cells
+    as the MATch reference draws it, folded into ± 1 cell beyond that (one cell each way already
+    lets every tile land anywhere in its own or a neighbour's cell; a Substance file's Position
+    Random of 10 would otherwise need a window of 21 × 21 cells at every pixel)."""
+    t = spread * (2.0 * r - 1.0)
+    return torch.where(t.abs() <= 1.0, t, torch.remainder(t + 1.0, 2.0) - 1.0)
+
+
 def _active(t: torch.Tensor) -> bool:
     """Whether a per-cell random control matters: non-zero, or trainable."""
     return t.requires_grad or bool((t != 0).any())
@@ -226,10 +235,10 @@ def _tile_reach(nx, ny, hx, hy, rotation, rotation_random, position_random, soft
             rot_q = torch.remainder(torch.round(rotation * 4.0), 2.0)  # quarter turns swap axes
             ext_x = torch.where(rot_q == 1, hy, hx) * nx
             ext_y = torch.where(rot_q == 1, hx, hy) * ny
-        jit = 0.5 * position_random.abs()
+        jit_x, jit_y = (j.abs().clamp_max(1.0) for j in _split2(position_random, hx))   # ``jitter_cells``
         grow = 1.0 + 0.5 * softness.abs()
         # (the half-pixel anti-aliasing spill of a neighbour is ignored)
-        rx, ry = ext_x * grow + jit, ext_y * grow + jit
+        rx, ry = ext_x * grow + jit_x, ext_y * grow + jit_y
         # cells whose centre lies within reach: m per axis, starting at floor(x + 1/2 - m/2); a
         # batch uses the largest window and masks each element to its own (same result as alone)
         mxb = torch.ceil(2.0 * rx - 1e-6).clamp(1, min(5, nx))
@@ -272,40 +281,50 @@ class GridMask:
 def _cell_values(nx, ny, rnd, pix, hx, hy, softness, position_random, scale_random, rotation, rotation_random,
                  luminance_random, mask_random, spec, spec_random, cr, *, use_pos, use_scale, use_rot, use_lum,
                  use_mask, use_spec, grid_mask: GridMask, lum_offset=None, lum_floor: bool = False,
-                 by_number: bool = False) -> dict[str, torch.Tensor]:
+                 by_number: bool = False, reverse: bool = False, by_scale: bool = False) -> dict[str, torch.Tensor]:
     """The per-cell quantities that vary between cells, each (B|1, ny * nx). ``lum_offset``: a
     level subtracted from every cell's luminance (the background under added tiles), the result at
     least 0 with ``lum_floor``; ``by_number``: luminance × (k + 1) / N for the k-th tile counted
-    down each column, then across."""
+    down each column, then across; ``reverse``: the cells take the random values, and the numbers,
+    in the reverse order (by number: × (N - k) / N);
+    ``by_scale``: luminance × the cell's random scale factor."""
     # per-cell derived quantities (B|1, ny * nx): every transcendental is evaluated once a cell, and
     # a pixel gathers only what varies between cells
+    if reverse:
+        rnd = rnd.flip(-1)
 
     def pc(t):
         return t.reshape(-1, 1)
 
     cellv = {}
     ex_c, ey_c = hx, hy
+    sc: float | torch.Tensor = 1.0
     if use_scale:
         sc = 1.0 - pc(scale_random) * rnd[RND_SCALE]
         ex_c, ey_c = (pc(hx) * sc).clamp_min(1e-6), (pc(hy) * sc).clamp_min(1e-6)
         cellv["ex"], cellv["ey"] = ex_c, ey_c
         cellv["w"] = pix / torch.sqrt(ex_c * ey_c) + pc(softness)
     if use_pos:
-        cellv["jx"] = pc(position_random) * (rnd[RND_PX] - 0.5) / nx
-        cellv["jy"] = pc(position_random) * (rnd[RND_PY] - 0.5) / ny
+        spread_x, spread_y = _split2(position_random, rnd)
+        cellv["jx"] = jitter_cells(pc(spread_x), rnd[RND_PX]) / nx
+        cellv["jy"] = jitter_cells(pc(spread_y), rnd[RND_PY]) / ny
     if use_rot:
-        ang = TAU * (pc(rotation) + pc(rotation_random) * (rnd[RND_ROT] - 0.5))
+        ang = TAU * (pc(rotation) + pc(rotation_random) * (2.0 * rnd[RND_ROT] - 1.0))
         ca, sa = torch.cos(ang), torch.sin(ang)
         iex = 1.0 / (ex_c if use_scale else pc(hx.clamp_min(1e-6)))
         iey = 1.0 / (ey_c if use_scale else pc(hy.clamp_min(1e-6)))
         cellv["a11"], cellv["a12"], cellv["a21"], cellv["a22"] = ca * iex, sa * iex, -sa * iey, ca * iey
-    if use_lum or use_mask or grid_mask.active or lum_offset is not None or by_number:
+    by_scale = by_scale and use_scale
+    if use_lum or use_mask or grid_mask.active or lum_offset is not None or by_number or by_scale:
         fac: float | torch.Tensor = 1.0
         if use_lum:
             fac = 1.0 - pc(luminance_random) * rnd[RND_LUM]
+        if by_scale:
+            fac = fac * torch.as_tensor(sc).clamp(0.0, 1.0)
         if by_number:   # tile k of the N counted down each column: k = column x ny + row, row-major cells
             k = torch.arange(nx, device=rnd.device).view(1, nx) * ny + torch.arange(ny, device=rnd.device).view(ny, 1)
-            fac = fac * ((k.reshape(1, -1) + 1).to(rnd.dtype) / (nx * ny))
+            rank = nx * ny - k if reverse else k + 1
+            fac = fac * (rank.reshape(1, -1).to(rnd.dtype) / (nx * ny))
         if lum_offset is not None:
             shifted = fac - pc(lum_offset) + rnd.new_zeros(1, nx * ny)   # one value a cell, whatever came before
             fac = shifted.clamp_min(0.0) if lum_floor else shifted
@@ -320,6 +339,12 @@ def _cell_values(nx, ny, rnd, pix, hx, hy, softness, position_random, scale_rand
         for name, k in (("r", RND_R), ("g", RND_G), ("b", RND_B)):
             cellv[name] = 1.0 - pc(cr) * (1.0 - rnd[k])
     return cellv
+
+
+def _gather_rows(values: torch.Tensor, rows: torch.Tensor) -> torch.Tensor:
+    """``values`` (B|1, ny, nx) per cell, at the row indices ``rows`` (B|1, H, 1): (B|1, H, nx)."""
+    b = max(values.shape[0], rows.shape[0])
+    return torch.gather(values.expand(b, -1, -1), 1, rows.expand(b, -1, values.shape[2]))
 
 
 @dataclass(frozen=True)
@@ -412,14 +437,20 @@ def tile_field(size: int, nx: int, ny: int, *, seed: int, profile: Callable, sca
                pattern_specific_random=0.0, softness=0.0, color_random=None, grid_mask: GridMask = GridMask(),
                own_cell: bool = False, blending: str = "max", background=0.0, opacity=1.0,
                offset_every_row: bool = False, luminance_by_number: bool = False, offset_random=0.0,
+               global_offset=(0.0, 0.0), reverse_order: bool = False, luminance_by_scale: bool = False,
                device=None, dtype=torch.float32):
     """A grid of ``nx`` × ``ny`` cells, one shape per cell; every alternate row is shifted right by
     ``offset`` cells. The shape fills its cell at scale 1 less the ``interstice`` gap (fraction of
     the cell), times ``size_xy`` (non-uniform size). Per cell, from ``lattice_random(seed)``:
-    position jitter up to ±``position_random``/2 cells, scale × (1 - ``scale_random`` r), rotation
-    ``rotation`` ± ``rotation_random``/2 turns, luminance × (1 - ``luminance_random`` r), and the
-    cell is hidden when r < ``mask_random`` (a soft threshold, so mask_random is differentiable),
-    and ``grid_mask`` hides every other tile, column or row (or, inverted, shows only those).
+    position jitter up to ± ``position_random`` cells (one value, or one for x and one for y;
+    ``jitter_cells``), scale × (1 - ``scale_random`` r), rotation ``rotation`` ± ``rotation_random``
+    turns (both spreads as the MATch reference draws them), luminance × (1 - ``luminance_random``
+    r), and the cell is hidden when r < ``mask_random`` (a soft threshold, so mask_random is
+    differentiable), and ``grid_mask`` hides every other tile, column or row (or, inverted, shows
+    only those). ``reverse_order``: the cells take their random values in the reverse order (the
+    reference's Reverse Rendering Order reverses the tiles' positions against every other per-tile
+    value; overlapping tiles are summed or maximised, so the drawing order itself changes nothing).
+    ``global_offset`` (x, y; fractions of the image) moves the whole layout.
 
     ``blending`` (the Tile Generator's Blending Mode): "max" keeps the highest shape over the
     ``background`` level; "add" adds to it each shape's luminance less the background (at least 0);
@@ -429,7 +460,7 @@ def tile_field(size: int, nx: int, ny: int, *, seed: int, profile: Callable, sca
     Generator's Offset), instead of every other row by ``offset``; ``offset_random`` adds to row k a
     random shift of up to ``offset_random`` × (k + 1) / ny of the image. ``luminance_by_number``:
     tile k of the N, counted down each column and then across, has its luminance scaled by
-    (k + 1) / N.
+    (k + 1) / N. ``luminance_by_scale``: each tile's luminance scaled by its random scale factor.
 
     ``softness`` (local units, 1 = the half size) widens hard edges beyond the one-pixel
     anti-aliasing. ``profile(x, y, w, spec, ex, ey)`` gives the shape's height at local coordinates
@@ -493,8 +524,9 @@ def tile_field(size: int, nx: int, ny: int, *, seed: int, profile: Callable, sca
         mx, my, per_element = 1, 1, False
 
     # separable coordinates: rows depend on v only, so row quantities are (.., H, 1)
-    X = (ucoord * nx).view(1, 1, 1, size)   # (1, 1, 1, W)
-    Y = (ucoord * ny).view(1, 1, size, 1)   # (1, 1, H, 1)
+    gx, gy = _split2(global_offset, ref)   # (B|1, 1, 1, 1)
+    X = (ucoord.view(1, 1, 1, size) - gx) * nx   # (B|1, 1, 1, W)
+    Y = (ucoord.view(1, 1, size, 1) - gy) * ny   # (B|1, 1, H, 1)
     offset_random = param4d(offset_random, ref)
     row_random = lattice_random(seed + ROW_SEED, 1, ny, device, dtype)[0] if _active(offset_random) else None
     row0 = torch.floor(Y + 0.5 - 0.5 * my)
@@ -503,7 +535,8 @@ def tile_field(size: int, nx: int, ny: int, *, seed: int, profile: Callable, sca
                          rotation_random, luminance_random, mask_random, spec, spec_random, cr,
                          use_pos=use_pos, use_scale=use_scale, use_rot=use_rot, use_lum=use_lum,
                          use_mask=use_mask, use_spec=use_spec, grid_mask=grid_mask, lum_offset=lum_offset,
-                         lum_floor=blending == "add", by_number=luminance_by_number)
+                         lum_floor=blending == "add", by_number=luminance_by_number, reverse=reverse_order,
+                         by_scale=luminance_by_scale)
     cellv = {k: v.reshape(v.shape[0], ny, nx) for k, v in cellv.items()}
     hx_e, hy_e = hx.clamp_min(1e-6), hy.clamp_min(1e-6)
     shape = _CellShape(profile, size, nx, use_pos, use_scale, use_rot, use_spec, hx_e, hy_e,
@@ -521,8 +554,8 @@ def tile_field(size: int, nx: int, ny: int, *, seed: int, profile: Callable, sca
         xs = X - shift
         c0 = torch.floor(xs + 0.5 - 0.5 * mx)
         fy = (Y - r - 0.5) / ny
-        ridx = torch.remainder(r, ny).long().view(-1)
-        rows = {k: v[:, ridx] for k, v in cellv.items()}  # (B|1, H, nx)
+        ridx = torch.remainder(r, ny).long().view(r.shape[0], size, 1)   # (B|1, H, 1): each element's rows
+        rows = {k: _gather_rows(v, ridx) for k, v in cellv.items()}  # (B|1, H, nx)
         if per_element:
             r_lo = torch.floor(Y + 0.5 - 0.5 * myb)
             keep_r = (r >= r_lo) & (r < r_lo + myb)

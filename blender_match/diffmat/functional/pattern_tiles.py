@@ -68,10 +68,34 @@ def _pattern_profile(pattern: int, image, where: str):
 # the arguments of the Tile Generator family that ``tile_field`` takes as they are
 _TILE_FIELD_ARGS = ("scale", "size_xy", "interstice", "offset", "position_random", "scale_random", "rotation",
                     "rotation_random", "luminance_random", "mask_random", "pattern_specific", "softness",
-                    "color_random", "seed", "device", "dtype")
+                    "color_random", "global_offset", "seed", "device", "dtype")
 # the Tile Generator's Blending Mode as files store it (index 1 is an empty entry of Substance's
 # list, read as Add; the MATch reference implementation, config/generators/tile_generator.yml)
 TILE_BLENDINGS = ("add", "add", "max", "add_sub")
+# the (x, y) pairs that a Vertical Offset layout takes transposed (``_transposed_layout``)
+_XY_ARGS = ("size_xy", "interstice", "position_random", "global_offset")
+
+
+def _transposed_layout(nx: int, ny: int, profile, field: dict, grid_mask: GridMask):
+    """The layout of a Vertical Offset Tile Generator drawn in the transposed image: its columns
+    become rows, which ``tile_field`` offsets (the MATch reference offsets column k down by
+    k × Offset cells instead of row k across). Every (x, y) pair swaps, the pattern is read with
+    its axes swapped, a rotation turns the other way, and the column and row masks trade places;
+    the caller transposes the result back. The order that Luminance By Number counts stays
+    tile_field's (down each of its columns), across each row of the final image."""
+    swapped = dict(field)
+    for k in _XY_ARGS:
+        if k in swapped:
+            t = param4d(swapped[k])
+            swapped[k] = t.flip(1) if t.shape[1] == 2 else t
+    swapped["rotation"] = -param4d(field.get("rotation", 0.0))
+
+    def read_transposed(x, y, w, s, ex=None, ey=None):
+        return profile(y, x, w, s, ey, ex)
+
+    mask = GridMask(checker=grid_mask.checker, columns=grid_mask.rows, rows=grid_mask.columns,
+                    invert=grid_mask.invert)
+    return ny, nx, read_transposed, swapped, mask
 
 
 def _tile_generator(where: str, image, args: dict):
@@ -89,10 +113,19 @@ def _tile_generator(where: str, image, args: dict):
         field["offset_every_row"] = True
         field["luminance_by_number"] = bool(args["luminance_by_number"])
         field["offset_random"] = args["offset_random"]
+        field["reverse_order"] = bool(args["reverse_rendering_order"])
+        field["luminance_by_scale"] = bool(args["luminance_by_scale"])
     grid_mask = GridMask(checker=bool(args.get("checker_mask")), columns=bool(args.get("horizontal_mask")),
                          rows=bool(args.get("vertical_mask")), invert=bool(args.get("invert_mask")))
-    return tile_field(args["size"], nx, ny, profile=profile, own_cell=_monotone(args["pattern"]),
-                      grid_mask=grid_mask, **field)
+    transposed = bool(args.get("vertical_offset"))
+    if transposed:
+        nx, ny, profile, field, grid_mask = _transposed_layout(nx, ny, profile, field, grid_mask)
+    height, color = tile_field(args["size"], nx, ny, profile=profile, own_cell=_monotone(args["pattern"]),
+                               grid_mask=grid_mask, **field)
+    if transposed:
+        height = height.transpose(-1, -2)
+        color = color.transpose(-1, -2) if color is not None else None
+    return height, color
 
 
 def tile_pattern(pattern_input_1=None, *, x_amount: int = 10, y_amount: int = 10, pattern: int = 1,
@@ -101,7 +134,8 @@ def tile_pattern(pattern_input_1=None, *, x_amount: int = 10, y_amount: int = 10
                  mask_random=0.0, softness=0.0, checker_mask: bool = False, horizontal_mask: bool = False,
                  vertical_mask: bool = False, invert_mask: bool = False, blending_mode: int = 0,
                  global_opacity=1.0, luminance_by_number: bool = False, offset_random=0.0,
-                 background_level=0.0, size: int = 512, seed: int = 0,
+                 vertical_offset: bool = False, global_offset=(0.0, 0.0), reverse_rendering_order: bool = False,
+                 luminance_by_scale: bool = False, background_level=0.0, size: int = 512, seed: int = 0,
                  device=None, dtype=torch.float32) -> torch.Tensor:
     """Tile Generator: an ``x_amount`` × ``y_amount`` grid of one pattern (``TILE_PATTERNS``;
     0 reads ``pattern_input_1``), row k shifted by k × ``offset`` cells ("offsets the entire
@@ -111,8 +145,10 @@ def tile_pattern(pattern_input_1=None, *, x_amount: int = 10, y_amount: int = 10
     ``invert_mask`` show only what the masks hide (``GridMask``). Overlapping tiles combine by
     ``blending_mode`` (``TILE_BLENDINGS``: Add by default, as Substance's) over the
     ``background_level``, the tiles scaled by ``global_opacity``; ``luminance_by_number`` fades
-    the tiles' luminance over their order; ``offset_random`` shifts each row at random
-    (``tile_field``)."""
+    the tiles' luminance over their order, ``luminance_by_scale`` over their random scale;
+    ``offset_random`` shifts each row at random; ``vertical_offset`` offsets columns instead of
+    rows; ``global_offset`` moves the whole layout; ``reverse_rendering_order`` gives the tiles
+    their random values in the reverse order (``tile_field``)."""
     out, _ = _tile_generator("tile_generator", pattern_input_1, locals())
     return out
 
@@ -123,7 +159,8 @@ def tile_pattern_color(pattern_input_1=None, *, x_amount: int = 10, y_amount: in
                        luminance_random=0.0, mask_random=0.0, softness=0.0, checker_mask: bool = False,
                        horizontal_mask: bool = False, vertical_mask: bool = False, invert_mask: bool = False,
                        blending_mode: int = 0, global_opacity=1.0, luminance_by_number: bool = False,
-                       offset_random=0.0, color_random=1.0,
+                       offset_random=0.0, vertical_offset: bool = False, global_offset=(0.0, 0.0),
+                       reverse_rendering_order: bool = False, luminance_by_scale: bool = False, color_random=1.0,
                        pattern_color=(1.0, 1.0, 1.0, 1.0), background_color=(0.0, 0.0, 0.0, 1.0),
                        size: int = 512, seed: int = 0, device=None, dtype=torch.float32) -> torch.Tensor:
     """Tile Generator Color: the tile layout of ``tile_pattern``; each tile takes

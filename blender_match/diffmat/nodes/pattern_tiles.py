@@ -20,10 +20,10 @@ def _layout(pattern=8, scale=1.0):
               doc="non-uniform size (Substance's 'Size'; renamed: 'size' is the output size)"),
         Param("interstice", (0.0, 0.0), 0.0, 1.0, size=2, doc="gap, fraction of the cell (x, y)"),
         Param("offset", 0.0, 0.0, 1.0, doc="row k shifted by k × offset cells"),
-        Param("position_random", 0.0, 0.0, 1.0, doc="jitter, cells"),
+        Param("position_random", (0.0, 0.0), 0.0, 1.0, size=2, doc="jitter up to ± this many cells (x, y)"),
         Param("scale_random", 0.0, 0.0, 1.0),
         Param("rotation", 0.0, 0.0, 1.0, doc="turns"),
-        Param("rotation_random", 0.0, 0.0, 1.0, doc="turns of random spread"),
+        Param("rotation_random", 0.0, 0.0, 1.0, doc="rotation ± this many turns at random"),
         Param("luminance_random", 0.0, 0.0, 1.0),
         Param("mask_random", 0.0, 0.0, 1.0, doc="fraction of tiles hidden"),
         Param("softness", 0.0, 0.0, 1.0, doc="edge softness, fraction of the half size"),
@@ -35,7 +35,13 @@ def _layout(pattern=8, scale=1.0):
         Param("global_opacity", 1.0, 0.0, 1.0, optimizable=False, doc="scales what the tiles add"),
         Param("luminance_by_number", False, kind="bool", doc="fades the tiles' luminance over their order"),
         Param("offset_random", 0.0, 0.0, 1.0, optimizable=False,
-              doc="row k shifted at random by up to offset_random x (k + 1) / rows of the image"))
+              doc="row k shifted at random by up to offset_random x (k + 1) / rows of the image"),
+        Param("vertical_offset", False, kind="bool", doc="offsets columns (down) instead of rows"),
+        Param("global_offset", (0.0, 0.0), -1.0, 1.0, size=2, optimizable=False,
+              doc="moves the whole layout (x, y), fractions of the image"),
+        Param("reverse_rendering_order", False, kind="bool",
+              doc="the tiles take their random values in the reverse order"),
+        Param("luminance_by_scale", False, kind="bool", doc="each tile's luminance times its random scale"))
 
 
 register(NodeSpec(

@@ -37,10 +37,10 @@ def build() -> SbsGraph:
 
     # ---- generators -------------------------------------------------------------------------
     g.add("fine_stones", "tile_sampler", seed=61, x_amount=40, y_amount=40, pattern=7, scale=1.3,
-          position_random=1.0, rotation_random=1.0, scale_random=0.6, luminance_random=0.3, mask_random=0.05)
+          position_random=0.5, rotation_random=0.5, scale_random=0.6, luminance_random=0.3, mask_random=0.05)
     g.bind("fine_stones", "scale", clamp(size * 1.3, 0.0, 2.0).graph())
     g.add("coarse_stones", "tile_sampler", seed=62, x_amount=16, y_amount=16, pattern=7, scale=1.1,
-          position_random=1.0, rotation_random=1.0, scale_random=0.5, luminance_random=0.3, mask_random=0.35)
+          position_random=0.5, rotation_random=0.5, scale_random=0.5, luminance_random=0.3, mask_random=0.35)
     g.bind("coarse_stones", "scale", clamp(size * 1.1, 0.0, 2.0).graph())
     g.add("binder_noise", "clouds_2", seed=63, scale=6.0)
     g.add("grain", "white_noise", seed=64)

@@ -52,11 +52,11 @@ def build() -> SbsGraph:
 
     # ---- tufts -------------------------------------------------------------------------------
     g.add("tufts_a", "tile_sampler", seed=81, x_amount=32, y_amount=32, pattern=3, scale=2.0,
-          position_random=0.6, scale_random=0.3, luminance_random=0.4)
+          position_random=0.3, scale_random=0.3, luminance_random=0.4)
     g.bind("tufts_a", "x_amount", lerp(48.0, 20.0, size).graph())
     g.bind("tufts_a", "y_amount", lerp(48.0, 20.0, size).graph())
     g.add("tufts_b", "tile_sampler", seed=82, x_amount=40, y_amount=40, pattern=3, scale=1.8,
-          position_random=0.8, scale_random=0.3, luminance_random=0.4, offset=0.5)
+          position_random=0.4, scale_random=0.3, luminance_random=0.4, offset=0.5)
     g.bind("tufts_b", "x_amount", lerp(60.0, 25.0, size).graph())
     g.bind("tufts_b", "y_amount", lerp(60.0, 25.0, size).graph())
     g.add("tufts", "blend", {"source": "tufts_b", "destination": "tufts_a"},
@@ -115,11 +115,11 @@ SAMPLE_RANGES = {
     "exposed.tuft_size": (0.1, 0.9),
     "exposed.fuzz": (0.2, 0.9),
     "exposed.pile_depth": (0.2, 0.9),
-    "tufts_a.position_random": (0.5, 0.9),
+    "tufts_a.position_random": (0.25, 0.45),
     "tufts_a.mask_random": (0.0, 0.1),
     "tufts_b.mask_random": (0.0, 0.15),
     "tufts_a.scale_random": (0.1, 0.5),
-    "tufts_b.position_random": (0.4, 1.0),
+    "tufts_b.position_random": (0.2, 0.5),
     "curls.scale": (5.0, 7.0),
     "shaded.opacitymult": (0.0, 0.25),
     "roughness.position": (0.8, 0.95),

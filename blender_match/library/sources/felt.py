@@ -69,7 +69,7 @@ def build() -> SbsGraph:
     g.add("density", "blend", {"source": "cloud_small", "destination": "cloud_big"},
           blendingmode=SOFT_LIGHT, opacitymult=0.7)
     g.add("pills", "tile_generator", blending_mode=TILES_MAX, seed=88, x_amount=20, y_amount=20, pattern=4, scale=0.55,
-          position_random=1.0, scale_random=0.6, luminance_random=0.3, mask_random=0.85)
+          position_random=0.5, scale_random=0.6, luminance_random=0.3, mask_random=0.85)
     g.bind("pills", "mask_random", lerp(1.0, 0.6, get("pilling")).graph())
 
     # ---- height -----------------------------------------------------------------------------

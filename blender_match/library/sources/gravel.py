@@ -67,10 +67,10 @@ def build() -> SbsGraph:
     gaps = get("gap_darkness")
 
     # ---- pebble layers -------------------------------------------------------------------------
-    large = dict(seed=61, x_amount=8, y_amount=8, scale=2.0, size_xy=(1.0, 0.72), position_random=1.0,
-                 rotation_random=1.0, scale_random=0.55)
-    small = dict(seed=62, x_amount=18, y_amount=18, scale=2.0, size_xy=(1.0, 0.75), position_random=1.0,
-                 rotation_random=1.0, scale_random=0.5)
+    large = dict(seed=61, x_amount=8, y_amount=8, scale=2.0, size_xy=(1.0, 0.72), position_random=0.5,
+                 rotation_random=0.5, scale_random=0.55)
+    small = dict(seed=62, x_amount=18, y_amount=18, scale=2.0, size_xy=(1.0, 0.75), position_random=0.5,
+                 rotation_random=0.5, scale_random=0.5)
     g.add("peb_l", "tile_sampler", pattern=3, luminance_random=0.2, **large)
     g.add("id_l", "tile_sampler", pattern=2, luminance_random=1.0, **large)
     g.add("peb_s", "tile_sampler", pattern=3, luminance_random=0.3, **small)

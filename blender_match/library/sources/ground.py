@@ -40,12 +40,12 @@ def build() -> SbsGraph:
     g.add("clods", "bnw_spots_1", seed=52, scale=10.0)
     g.add("grain", "gaussian_noise", seed=53, scale=2.0)
     g.add("pebbles_l", "tile_sampler", seed=54, x_amount=6, y_amount=6, pattern=3, scale=0.9,
-          size_xy=[1.0, 0.75], position_random=1.0, rotation_random=1.0, scale_random=0.5,
+          size_xy=[1.0, 0.75], position_random=0.5, rotation_random=0.5, scale_random=0.5,
           luminance_random=0.25, mask_random=0.5)
     g.bind("pebbles_l", "scale", clamp(size * 0.9, 0.0, 2.0).graph())
     g.bind("pebbles_l", "mask_random", lerp(0.95, 0.2, gravel).graph())
     g.add("pebbles_s", "tile_sampler", seed=55, x_amount=14, y_amount=14, pattern=3, scale=0.8,
-          size_xy=[1.0, 0.7], position_random=1.0, rotation_random=1.0, scale_random=0.6,
+          size_xy=[1.0, 0.7], position_random=0.5, rotation_random=0.5, scale_random=0.6,
           luminance_random=0.25, mask_random=0.4)
     g.bind("pebbles_s", "scale", clamp(size * 0.8, 0.0, 2.0).graph())
     g.bind("pebbles_s", "mask_random", lerp(0.9, 0.05, gravel).graph())

@@ -58,7 +58,7 @@ def build() -> SbsGraph:
     # each leg reaches into the rows above and below; overlapping legs keep the higher (Max
     # blending), so the stitches stay distinct where Add would sum them to white
     legs = dict(x_amount=COLS, y_amount=ROWS, pattern=3, scale=1.0, size_xy=(0.62, 1.75),
-                luminance_random=0.25, position_random=0.04, scale_random=0.08)
+                luminance_random=0.25, position_random=0.02, scale_random=0.08)
     g.add("legs_l_src", "tile_generator", blending_mode=TILES_MAX, seed=61, rotation=0.06, **legs)
     g.add("legs_r_src", "tile_generator", blending_mode=TILES_MAX, seed=62, rotation=0.94, **legs)
     quarter = 0.25 / COLS

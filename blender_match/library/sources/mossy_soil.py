@@ -71,7 +71,7 @@ def build() -> SbsGraph:
 
     # ---- pebbles -------------------------------------------------------------------------------
     g.add("pebbles", "tile_sampler", seed=84, x_amount=10, y_amount=10, pattern=3, scale=0.9,
-          size_xy=(1.0, 0.75), position_random=1.0, rotation_random=1.0, scale_random=0.6,
+          size_xy=(1.0, 0.75), position_random=0.5, rotation_random=0.5, scale_random=0.6,
           luminance_random=0.5, mask_random=0.8)
     g.bind("pebbles", "mask_random", lerp(0.98, 0.6, debris).graph())
     for param in ("offset", "rotation"):  # meaningless with random positions and rotations

@@ -86,12 +86,12 @@ def build() -> SbsGraph:
 
     # ---- knots and patches -------------------------------------------------------------------
     g.add("knot_spots", "tile_sampler", seed=95, x_amount=5, y_amount=5, pattern=DISC, scale=0.25,
-          size_xy=(1.0, 0.7), position_random=1.0, scale_random=0.5, mask_random=0.7)
+          size_xy=(1.0, 0.7), position_random=0.5, scale_random=0.5, mask_random=0.7)
     g.bind("knot_spots", "mask_random", lerp(1.0, 0.5, get("knots")).graph())
     g.add("knot_core", "histogram_scan", {"input_1": "knot_spots"}, position=0.8, contrast=0.8)
     g.add("knot_halo", "blur_hq_grayscale", {"source": "knot_core"}, intensity=6.0)
     g.add("patch_spots", "tile_sampler", seed=96, x_amount=3, y_amount=3, pattern=DISC, scale=0.6,
-          size_xy=(1.0, 0.45), position_random=1.0, scale_random=0.3, mask_random=0.8)
+          size_xy=(1.0, 0.45), position_random=0.5, scale_random=0.3, mask_random=0.8)
     g.bind("patch_spots", "mask_random", lerp(1.0, 0.7, get("knots")).graph())
     g.add("patches", "histogram_scan", {"input_1": "patch_spots"}, position=0.9, contrast=0.9)
 

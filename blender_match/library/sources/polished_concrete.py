@@ -75,11 +75,11 @@ def build() -> SbsGraph:
 
     # ---- aggregate ---------------------------------------------------------------------------
     g.add("stones_l", "tile_sampler", seed=71, x_amount=9, y_amount=9, pattern=DISC, scale=1.1,
-          size_xy=(1.0, 0.7), position_random=1.0, rotation_random=1.0, scale_random=0.6,
+          size_xy=(1.0, 0.7), position_random=0.5, rotation_random=0.5, scale_random=0.6,
           luminance_random=0.8, mask_random=0.5)
     g.bind("stones_l", "mask_random", lerp(0.98, 0.35, aggregate).graph())
     g.add("stones_s", "tile_sampler", seed=72, x_amount=26, y_amount=26, pattern=DISC, scale=0.6,
-          size_xy=(1.0, 0.7), position_random=1.0, rotation_random=1.0, scale_random=0.7,
+          size_xy=(1.0, 0.7), position_random=0.5, rotation_random=0.5, scale_random=0.7,
           luminance_random=0.8, mask_random=0.4)
     g.bind("stones_s", "mask_random", lerp(0.95, 0.2, aggregate).graph())
     g.add("edge_noise", "perlin_noise", seed=73, scale=12.0)

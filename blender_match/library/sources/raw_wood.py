@@ -53,7 +53,7 @@ def build() -> SbsGraph:
 
     # ---- knots -------------------------------------------------------------------------------
     g.add("knot_blobs", "tile_generator", blending_mode=TILES_MAX, seed=61, x_amount=2, y_amount=3, pattern=GAUSSIAN,
-          scale=0.55, position_random=0.8, scale_random=0.5, mask_random=0.5, offset=0.5)
+          scale=0.55, position_random=0.4, scale_random=0.5, mask_random=0.5, offset=0.5)
     g.bind("knot_blobs", "mask_random", lerp(1.0, 0.0, get("knots")).graph())
     g.add("knot_field", "blur_hq_grayscale", {"source": "knot_blobs"}, intensity=8.0)
 

@@ -27,9 +27,9 @@ def build() -> SbsGraph:
 
     # chips
     g.add("chips_large", "tile_sampler", seed=12, x_amount=7, y_amount=7, pattern=1, scale=0.8,
-          position_random=1.0, rotation_random=1.0, scale_random=0.5, luminance_random=0.9)
+          position_random=0.5, rotation_random=0.5, scale_random=0.5, luminance_random=0.9)
     g.add("chips_small", "tile_sampler", seed=27, x_amount=18, y_amount=18, pattern=1, scale=0.6,
-          position_random=1.0, rotation_random=1.0, scale_random=0.6, luminance_random=0.9)
+          position_random=0.5, rotation_random=0.5, scale_random=0.6, luminance_random=0.9)
     g.bind("chips_large", "mask_random", (0.9 - 0.9 * get("chip_density")).graph())
     g.bind("chips_small", "mask_random", (0.8 - 0.8 * get("chip_density")).graph())
     g.add("warp_noise", "perlin_noise", seed=5, scale=6.0)
