@@ -9,7 +9,7 @@ import torch
 
 from blender_match.diffmat import DiffMatError, EvalContext, Node
 from blender_match.diffmat import functional as F
-from blender_match.diffmat.functional.pattern_shapes import tile_supersampling
+from blender_match.diffmat.functional.pattern_shapes import jitter_cells, tile_supersampling
 
 S = 64
 
@@ -133,7 +133,6 @@ def test_tile_generator_position_and_rotation_random_spread_as_the_reference():
         wide = F.tile_pattern(position_random=(10.0, 10.0), size=S, **kw)[0, 0]
     assert abs(wide.mean().item() - plain.mean().item()) < 0.03   # scattered, none lost
     r = torch.tensor([0.0, 0.25, 0.5, 1.0])
-    from blender_match.diffmat.functional.pattern_shapes import jitter_cells
     torch.testing.assert_close(jitter_cells(torch.tensor(0.8), r), torch.tensor([-0.8, -0.4, 0.0, 0.8]))
     assert (jitter_cells(torch.tensor(10.0), torch.rand(1000)).abs() <= 1.0).all()
     # Brick bars turned by up to ± 1/8 turn: some tiles lean each way by more than 1/16 turn
