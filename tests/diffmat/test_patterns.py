@@ -101,8 +101,9 @@ def test_tile_generator_reverse_rendering_order_reverses_the_random_values():
 def test_tile_generator_vertical_offset_shifts_columns_down():
     """Vertical Offset: column k moves down by k × offset cells (the MATch reference) where
     otherwise row k moves across; with no offset the layout is the same either way, whatever the
-    pattern's asymmetry or rotation."""
-    kw = dict(x_amount=8, y_amount=4, pattern=9, rotation=0.1, size_xy=(0.9, 0.6), interstice=(0.1, 0.0))
+    pattern's asymmetry or rotation, Luminance By Number's order included."""
+    kw = dict(x_amount=8, y_amount=4, pattern=9, rotation=0.1, size_xy=(0.9, 0.6), interstice=(0.1, 0.0),
+              luminance_by_number=True)
     torch.testing.assert_close(_render("tile_generator", vertical_offset=True, **kw), _render("tile_generator", **kw))
     kw = dict(x_amount=4, y_amount=4, pattern=1, interstice=(0.2, 0.2))
     base = _render("tile_generator", **kw)[0, 0]

@@ -281,12 +281,13 @@ class GridMask:
 def _cell_values(nx, ny, rnd, pix, hx, hy, softness, position_random, scale_random, rotation, rotation_random,
                  luminance_random, mask_random, spec, spec_random, cr, *, use_pos, use_scale, use_rot, use_lum,
                  use_mask, use_spec, grid_mask: GridMask, lum_offset=None, lum_floor: bool = False,
-                 by_number: bool = False, reverse: bool = False, by_scale: bool = False) -> dict[str, torch.Tensor]:
+                 by_number: bool = False, across: bool = False, reverse: bool = False,
+                 by_scale: bool = False) -> dict[str, torch.Tensor]:
     """The per-cell quantities that vary between cells, each (B|1, ny * nx). ``lum_offset``: a
     level subtracted from every cell's luminance (the background under added tiles), the result at
     least 0 with ``lum_floor``; ``by_number``: luminance × (k + 1) / N for the k-th tile counted
-    down each column, then across; ``reverse``: the cells take the random values, and the numbers,
-    in the reverse order (by number: × (N - k) / N);
+    down each column, then across (``across``: along each row, then down); ``reverse``: the cells
+    take the random values, and the numbers, in the reverse order (by number: × (N - k) / N);
     ``by_scale``: luminance × the cell's random scale factor."""
     # per-cell derived quantities (B|1, ny * nx): every transcendental is evaluated once a cell, and
     # a pixel gathers only what varies between cells
@@ -321,8 +322,10 @@ def _cell_values(nx, ny, rnd, pix, hx, hy, softness, position_random, scale_rand
             fac = 1.0 - pc(luminance_random) * rnd[RND_LUM]
         if by_scale:
             fac = fac * torch.as_tensor(sc).clamp(0.0, 1.0)
-        if by_number:   # tile k of the N counted down each column: k = column x ny + row, row-major cells
-            k = torch.arange(nx, device=rnd.device).view(1, nx) * ny + torch.arange(ny, device=rnd.device).view(ny, 1)
+        if by_number:   # tile k of the N (row-major cells): k = column x ny + row, or row x nx + column across
+            column = torch.arange(nx, device=rnd.device).view(1, nx)
+            row = torch.arange(ny, device=rnd.device).view(ny, 1)
+            k = row * nx + column if across else column * ny + row
             rank = nx * ny - k if reverse else k + 1
             fac = fac * (rank.reshape(1, -1).to(rnd.dtype) / (nx * ny))
         if lum_offset is not None:
@@ -436,8 +439,9 @@ def tile_field(size: int, nx: int, ny: int, *, seed: int, profile: Callable, sca
                rotation_random=0.0, luminance_random=0.0, mask_random=0.0, pattern_specific=0.5,
                pattern_specific_random=0.0, softness=0.0, color_random=None, grid_mask: GridMask = GridMask(),
                own_cell: bool = False, blending: str = "max", background=0.0, opacity=1.0,
-               offset_every_row: bool = False, luminance_by_number: bool = False, offset_random=0.0,
-               global_offset=(0.0, 0.0), reverse_order: bool = False, luminance_by_scale: bool = False,
+               offset_every_row: bool = False, luminance_by_number: bool = False, numbered_across: bool = False,
+               offset_random=0.0, global_offset=(0.0, 0.0), reverse_order: bool = False,
+               luminance_by_scale: bool = False,
                device=None, dtype=torch.float32):
     """A grid of ``nx`` × ``ny`` cells, one shape per cell; every alternate row is shifted right by
     ``offset`` cells. The shape fills its cell at scale 1 less the ``interstice`` gap (fraction of
@@ -459,8 +463,9 @@ def tile_field(size: int, nx: int, ny: int, *, seed: int, profile: Callable, sca
     ``offset_every_row``: row k is shifted by k × ``offset`` cells (k in [0, ny), the Tile
     Generator's Offset), instead of every other row by ``offset``; ``offset_random`` adds to row k a
     random shift of up to ``offset_random`` × (k + 1) / ny of the image. ``luminance_by_number``:
-    tile k of the N, counted down each column and then across, has its luminance scaled by
-    (k + 1) / N. ``luminance_by_scale``: each tile's luminance scaled by its random scale factor.
+    tile k of the N, counted down each column and then across (``numbered_across``: along each
+    row, then down), has its luminance scaled by (k + 1) / N. ``luminance_by_scale``: each tile's
+    luminance scaled by its random scale factor.
 
     ``softness`` (local units, 1 = the half size) widens hard edges beyond the one-pixel
     anti-aliasing. ``profile(x, y, w, spec, ex, ey)`` gives the shape's height at local coordinates
@@ -535,7 +540,8 @@ def tile_field(size: int, nx: int, ny: int, *, seed: int, profile: Callable, sca
                          rotation_random, luminance_random, mask_random, spec, spec_random, cr,
                          use_pos=use_pos, use_scale=use_scale, use_rot=use_rot, use_lum=use_lum,
                          use_mask=use_mask, use_spec=use_spec, grid_mask=grid_mask, lum_offset=lum_offset,
-                         lum_floor=blending == "add", by_number=luminance_by_number, reverse=reverse_order,
+                         lum_floor=blending == "add", by_number=luminance_by_number, across=numbered_across,
+                         reverse=reverse_order,
                          by_scale=luminance_by_scale)
     cellv = {k: v.reshape(v.shape[0], ny, nx) for k, v in cellv.items()}
     hx_e, hy_e = hx.clamp_min(1e-6), hy.clamp_min(1e-6)

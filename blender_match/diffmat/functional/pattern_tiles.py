@@ -80,15 +80,16 @@ def _transposed_layout(nx: int, ny: int, profile, field: dict, grid_mask: GridMa
     """The layout of a Vertical Offset Tile Generator drawn in the transposed image: its columns
     become rows, which ``tile_field`` offsets (the MATch reference offsets column k down by
     k × Offset cells instead of row k across). Every (x, y) pair swaps, the pattern is read with
-    its axes swapped, a rotation turns the other way, and the column and row masks trade places;
-    the caller transposes the result back. The order that Luminance By Number counts stays
-    tile_field's (down each of its columns), across each row of the final image."""
+    its axes swapped, a rotation turns the other way, the column and row masks trade places, and
+    Luminance By Number counts along the rows (the final image's columns); the caller transposes
+    the result back."""
     swapped = dict(field)
     for k in _XY_ARGS:
         if k in swapped:
             t = param4d(swapped[k])
             swapped[k] = t.flip(1) if t.shape[1] == 2 else t
     swapped["rotation"] = -param4d(field.get("rotation", 0.0))
+    swapped["numbered_across"] = True
 
     def read_transposed(x, y, w, s, ex=None, ey=None):
         return profile(y, x, w, s, ey, ex)
