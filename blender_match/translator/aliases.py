@@ -18,8 +18,9 @@ identifier against a spec, first match wins:
 Value conversions (``convert_value``) for parameters whose meaning differs between library
 versions: a legacy ``Disorder`` slider runs 0..100 where the specs' ``disorder`` is 0..1 (a value
 above 1 is divided by 100); ``gradient_linear_*``'s ``rotation`` is an integer index of quarter
-turns in the library and turns in the specs; the Scratches Generator's ``Spline Number`` counts
-every scratch, where our ``amount`` is the side of a lattice holding two a cell.
+turns in the library and turns in the specs; Make It Tile Patch's angles are degrees; the
+Scratches Generator's ``Spline Number`` counts every scratch, where our ``amount`` is the side of
+a lattice holding two a cell.
 """
 from __future__ import annotations
 
@@ -67,7 +68,7 @@ PARAM_ALIASES: dict[str, dict[str, str | tuple[str, ...]]] = {
     # filters
     "normal_to_height": {"global_opacity": "opacity"},
     "non_uniform_blur_grayscale": {"blade": "blades"},
-    "make_it_tile_patch_grayscale": {"octaves": "octave"},
+    "make_it_tile_patch_grayscale": {"octaves": "octave", "luminosity_variation": "color_variation"},
     "make_it_tile_patch": {"octaves": "octave"},
 }
 
@@ -84,6 +85,10 @@ INPUT_ALIASES: dict[str, dict[str, str]] = {
 
 # parameters whose file value is rescaled: (node or "*", spec parameter) -> converter
 QUARTER_TURN_ROTATION = {"gradient_linear_1", "gradient_linear_2", "gradient_linear_3"}
+# angles that the library's sliders give in degrees and the specs in turns (Make It Tile Patch:
+# Rotation -360..360, Rotation Variation 0..360, its documentation)
+DEGREE_ANGLES = {(node, param) for node in ("make_it_tile_patch", "make_it_tile_patch_grayscale")
+                 for param in ("rotation", "rotation_variation")}
 
 
 def norm(identifier: str) -> str:
@@ -149,6 +154,8 @@ def convert_value(spec_name: str, param: str, identifier: str, value):
         return value / 100.0
     if param == "rotation" and spec_name in QUARTER_TURN_ROTATION and isinstance(value, int):
         return (value % 4) * 0.25
+    if (spec_name, param) in DEGREE_ANGLES and isinstance(value, (int, float)):
+        return value / 360.0
     ident = norm(identifier)
     if ident == "free_rotation" and isinstance(value, (int, float)):
         return (value / 360.0) % 1.0

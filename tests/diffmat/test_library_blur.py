@@ -143,11 +143,54 @@ def test_make_it_tile_photo_makes_a_ramp_tile():
     torch.testing.assert_close(centre, ramp[..., 12:20, 12:20])
 
 
-def test_make_it_tile_patch_constant_seed_and_tiling():
+def test_make_it_tile_photo_warping_runs_minus_to_plus_100():
+    """Mask Warping is a Directional Warp intensity (-100..100): a production silk sets 89; it was
+    read as a fraction of the image and moved the fade out of the picture."""
+    g = torch.Generator().manual_seed(2)
+    u = torch.linspace(0, 1, 32)
+    ramp = (u[None, :] * 0.5 + u[:, None] * 0.5).reshape(1, 1, 32, 32)
+    noisy = (ramp + 0.2 * torch.rand(1, 1, 32, 32, generator=g)).clamp(0, 1)
+    plain = F.make_it_tile_photo(noisy)
+    bent = F.make_it_tile_photo(noisy, mask_warping_h=89.0, mask_warping_v=-60.0)
+    assert (bent - plain).abs().max() > 0.02
+    torch.testing.assert_close(bent[..., 14:18, 14:18], noisy[..., 14:18, 14:18])
+    wrap, _ = seam_jumps(bent)
+    assert wrap < 0.3
+
+
+def test_make_it_tile_patch_stamps_the_whole_input_shrunk():
+    # octave 1, stamps one cell wide with a hard full mask: each quarter is the input at half size
+    x = torch.rand(1, 1, 32, 32, generator=torch.Generator().manual_seed(5))
+    out = F.make_it_tile_patch(x, octave=1, pattern_size_width=100.0, pattern_size_height=100.0,
+                               mask_precision=1.0)
+    half = torch.nn.functional.avg_pool2d(x, 2)
+    torch.testing.assert_close(out, half.repeat(1, 1, 2, 2), atol=1e-5, rtol=0)
+
+
+def test_make_it_tile_patch_covers_a_flat_input_and_tiles():
     flat = torch.full((1, 1, 32, 32), 0.4)
-    torch.testing.assert_close(F.make_it_tile_patch(flat, seed=1), flat, atol=1e-5, rtol=0)
+    torch.testing.assert_close(F.make_it_tile_patch(flat, mask_precision=1.0, seed=1), flat, atol=1e-5, rtol=0)
+    # the default soft mask lets the black background through between stamps, as the reference's does
+    assert float(F.make_it_tile_patch(flat, seed=1).min()) < 0.35
     x = torch.linspace(0, 1, 32)[None, None, None, :].expand(1, 1, 32, 32).contiguous()
-    a, b = F.make_it_tile_patch(x, seed=1), F.make_it_tile_patch(x, seed=2)
-    assert torch.equal(a, F.make_it_tile_patch(x, seed=1)) and (a - b).abs().max() > 0.05
-    wrap, inside = seam_jumps(a)
-    assert wrap <= inside + 1e-5
+    spread = {"disorder": 0.1, "rotation_variation": 0.5, "size_variation": 50.0}
+    a, b = F.make_it_tile_patch(x, seed=1, **spread), F.make_it_tile_patch(x, seed=2, **spread)
+    assert torch.equal(a, F.make_it_tile_patch(x, seed=1, **spread)) and (a - b).abs().max() > 0.05
+    # the ramp's own seam (a jump of 1) is gone: across the wrap the stamps meet as they do across
+    # the cell boundary in the middle
+    for out in (a, b):
+        across = (out[..., 0] - out[..., -1]).abs().mean()
+        middle = (out[..., 16] - out[..., 15]).abs().mean()
+        assert across < 2 * middle + 0.02 < 0.3
+
+
+def test_make_it_tile_patch_colour_variation_and_background():
+    flat = torch.full((1, 1, 32, 32), 0.8)
+    darker = F.make_it_tile_patch(flat, mask_precision=1.0, color_variation=0.5, seed=3)
+    assert 0.4 < float(darker.min()) and float(darker.mean()) < 0.75
+    # where no stamp reaches, the grayscale node shows its colour variation as a level (Substance's)
+    gaps = F.make_it_tile_patch(flat, mask_size=0.3, color_variation=0.25, seed=3)
+    assert abs(float(gaps[..., 0, 0]) - 0.25) < 1e-4
+    rgba = torch.full((1, 4, 32, 32), 0.8)
+    red = F.make_it_tile_patch(rgba, mask_size=0.3, background_color=(1.0, 0.0, 0.0, 1.0))
+    torch.testing.assert_close(red[0, :, 0, 0], torch.tensor([1.0, 0.0, 0.0, 1.0]))

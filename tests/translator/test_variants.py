@@ -153,6 +153,31 @@ def test_quarter_turn_rotation_and_old_tile_identifiers(tmp_path):
     assert math.isclose(vals["pattern_specific"], 0.09, abs_tol=1e-5)
 
 
+def test_make_it_tile_patch_reads_every_slider_in_its_units(tmp_path):
+    """Make It Tile Patch's sizes were dropped and its angles (degrees) read as turns; the
+    grayscale node's Luminosity Variation is its colour variation."""
+    t = _one_instance(tmp_path, "make_it_tile_patch_grayscale",
+                      [W.param("Pattern_size_width", "constantValueFloat1", 361.6),
+                       W.param("Pattern_size_height", "constantValueFloat1", 214.5),
+                       W.param("Size_Variation", "constantValueFloat1", 36.8),
+                       W.param("Rotation", "constantValueFloat1", 90.0),
+                       W.param("Rotation_Variation", "constantValueFloat1", 360.0),
+                       W.param("Mask_Warping", "constantValueFloat1", 12.4),
+                       W.param("Luminosity_Variation", "constantValueFloat1", 0.5),
+                       W.param("Octave", "constantValueInt32", 2)],
+                      out_ident="Make_It_Tile_Patch_Grayscale")
+    assert t.report["params_dropped"] == 0, t.report["params_dropped_names"]
+    vals, _ = _values(t, "make_it_tile_patch_grayscale")
+    assert vals["pattern_size_width"] == pytest.approx(361.6, abs=1e-3)
+    assert vals["pattern_size_height"] == pytest.approx(214.5, abs=1e-3)
+    assert vals["size_variation"] == pytest.approx(36.8, abs=1e-3)
+    assert vals["rotation"] == pytest.approx(0.25, abs=1e-6)
+    assert vals["rotation_variation"] == pytest.approx(1.0, abs=1e-6)
+    assert vals["mask_warping"] == pytest.approx(12.4, abs=1e-4)
+    assert vals["color_variation"] == pytest.approx(0.5, abs=1e-6) and vals["octave"] == 2
+    assert torch.isfinite(t.graph(size=SIZE)["height"]).all()
+
+
 def test_input_slot_spellings(tmp_path):
     src = W.filter_node(5, "uniform", params=[W.param("outputcolor", "constantValueFloat4", "0.3 0.3 0.3 1"),
                                               W.param("colorswitch", "constantValueBool", 0)], outputs=[(6, 2)])

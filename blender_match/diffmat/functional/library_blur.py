@@ -26,6 +26,7 @@ from .common import (
     sample_wrap,
     to_gray,
 )
+from .warp import directional_warp
 
 __all__ = ["blur_hq", "slope_blur", "non_uniform_blur", "highpass", "vector_warp", "vector_morph",
            "mosaic", "safe_transform", "make_it_tile_patch", "make_it_tile_photo"]
@@ -306,85 +307,160 @@ def safe_transform(input: torch.Tensor, *, tile: int = 1, tile_mode: int = 0, ti
 
 
 # ---------------------------------------------------------------- make it tile
+PATCH_MASK_FALLOFF = 21.3     # the stamp's round mask exp(-21.3 r²), r in stamp widths (MATch reference's Gaussian)
+PATCH_MASK_FLOOR = 0.01       # mask values below this count as outside the stamp (they change nothing visible)
+MAX_PATCH_RADIUS = 4          # at most (2·4 + 1)² cells of stamps looked at per pixel
+
+
 def _cell_tables(n: int, seed: int, count: int, like: torch.Tensor) -> torch.Tensor:
     g = torch.Generator().manual_seed(int(seed) & 0x7FFFFFFF)
     return torch.rand(count, n, n, generator=g, dtype=torch.float64).to(device=like.device, dtype=like.dtype)
 
 
-def make_it_tile_patch(source: torch.Tensor, *, octave: int = 3, size=1.0, disorder=0.0, mask_size=0.5,
-                       mask_precision=0.5, mask_warping=0.0, rotation=0.0, rotation_variation=0.0,
-                       seed: int = 0):
-    """Make It Tile Patch: makes a tileable texture out of any image by scattering patches of it.
+def _stamp_reach(size_cells: torch.Tensor, mask_size: torch.Tensor) -> torch.Tensor:
+    """How far (in cells) from its centre a stamp ``size_cells`` wide can change a pixel: where
+    its mask stays above ``1 - mask_size`` (and ``PATCH_MASK_FLOOR``), at most its half diagonal."""
+    floor = (1.0 - mask_size).clamp_min(PATCH_MASK_FLOOR)
+    return size_cells * torch.sqrt(torch.log(1.0 / floor) / PATCH_MASK_FALLOFF).clamp_max(0.5 * math.sqrt(2.0))
 
-    The output is a (2^octave)^2 grid of cells; each cell shows a patch of ``source`` taken around
-    a random point (kept inside the image), rotated by ``rotation`` + ``rotation_variation`` x
-    random (turns), scaled by ``size``; cell centres jitter by ``disorder``. Each pixel blends the
-    patches of its four nearest cells with Gaussian weights whose width is ``mask_size`` (cells)
-    and sharpness ``mask_precision``; ``mask_warping`` bends the seams with the image's own values.
+
+def _fold(cells: torch.Tensor, period: float, slack: torch.Tensor) -> torch.Tensor:
+    """A displacement in cells folded onto the torus (``period`` cells) and, where it still goes
+    further than ``slack`` cells, wrapped into ± ``slack`` (a stamp that far is anywhere anyway)."""
+    cells = torch.remainder(cells + period / 2, period) - period / 2
+    room = slack.clamp_min(1e-6)
+    folded = torch.where(slack > 0, torch.remainder(cells + room, 2 * room) - room, torch.zeros_like(cells))
+    return torch.where(slack >= period / 2, cells, folded)
+
+
+def make_it_tile_patch(source: torch.Tensor, *, octave: int = 3, mask_size=1.0, mask_precision=0.5,
+                       mask_warping=0.0, pattern_size_width=200.0, pattern_size_height=200.0, disorder=0.0,
+                       size_variation=0.0, rotation=0.0, rotation_variation=0.0, color_variation=0.0,
+                       background_color=(0.0, 0.0, 0.0, 1.0), seed: int = 0):
+    """Make It Tile Patch: stamps the whole input, shrunk, over a grid so that it tiles.
+
+    Substance's node is an FX-map; these are the facts of its documentation and of the MATch
+    reference: a (2^octave)² grid of cells, two stamps a cell, each the whole input drawn
+    ``pattern_size_width`` x ``pattern_size_height`` percent of a cell (plus the same random
+    (r₁ − r₂) · ``size_variation`` percent on both), turned ``rotation`` + r · ``rotation_variation``
+    turns, moved ``disorder`` image widths in a random direction, its colour multiplied by
+    1 − r · ``color_variation`` per channel (the grayscale node's Luminosity Variation), and cut
+    by a round mask: exp(−21.3 r²) through Levels with input range [1 − mask_size,
+    1 − mask_precision · mask_size], displaced along the slope of the blurred input by
+    ``mask_warping`` (a Warp of intensity mask_warping × 0.05 in stamp space). The stamps are
+    laid over ``background_color`` (the grayscale node: over a level of ``color_variation``,
+    as Substance does) by their masks, in order.
+
+    Our choices: the stamps are laid in row-major order of their (unwrapped) cells, two a cell,
+    so the order survives the wrap (Substance's FX-map order is a quadtree's); each pixel looks
+    at the stamps of at most 9 x 9 cells around its own (``MAX_PATCH_RADIUS``): a disorder that
+    would carry a stamp further wraps within that window, where its place is random anyway.
     """
     if isinstance(octave, bool) or not 0 <= int(octave) <= 8:
         raise DiffMatError(f"make_it_tile_patch.octave: expected an integer in [0, 8], got {octave!r}")
     x = source
     n = 2 ** int(octave)
-    tables = _cell_tables(n, seed, 5, x)          # jitter u, jitter v, source u, source v, rotation
-    u, v = _grid(x)
-    dis = param4d(disorder, x)
-    msize = param4d(mask_size, x).clamp_min(0.05)
-    prec = param4d(mask_precision, x)
-    warp = param4d(mask_warping, x)
-    scale = param4d(size, x).clamp_min(0.05)
+    size = x.shape[-1]
+    ms = param4d(mask_size, x).clamp(1e-3, 1.0)
+    mp = param4d(mask_precision, x).clamp(0.0, 1.0)
+    warp = param4d(mask_warping, x) * (0.05 / 256.0)
+    width = param4d(pattern_size_width, x) / 100.0
+    height = param4d(pattern_size_height, x) / 100.0
+    variation = param4d(size_variation, x) / 100.0
+    dis = param4d(disorder, x) * n
     rot = param4d(rotation, x)
     rvar = param4d(rotation_variation, x)
-    gray = to_gray(x)
-    uw = u + warp * (gray - 0.5) * (0.5 / n)
-    vw = v + warp * (gray - 0.5) * (0.5 / n)
-    i0 = torch.floor(u * n - 0.5).long()
-    j0 = torch.floor(v * n - 0.5).long()
-    sharp = (1.0 + 12.0 * prec) / (msize * msize)
-    num: float | torch.Tensor = 0.0
-    den: float | torch.Tensor = 0.0
-    for di in (0, 1):
-        for dj in (0, 1):
-            ci = torch.remainder(i0 + di, n)
-            cj = torch.remainder(j0 + dj, n)
-            jit_u, jit_v, src_u, src_v, rnd = (t[cj, ci] for t in tables)
-            cu = (ci + 0.5 + dis * (jit_u - 0.5)) / n
-            cv = (cj + 0.5 + dis * (jit_v - 0.5)) / n
-            lu = torch.remainder(u - cu + 0.5, 1.0) - 0.5
-            lv = torch.remainder(v - cv + 0.5, 1.0) - 0.5
-            wu = torch.remainder(uw - cu + 0.5, 1.0) - 0.5
-            wv = torch.remainder(vw - cv + 0.5, 1.0) - 0.5
-            w = torch.exp(-sharp * (wu * wu + wv * wv) * (n * n))
-            a = (rot + rvar * (rnd - 0.5)) * (2 * math.pi)
-            ca, sa = torch.cos(a), torch.sin(a)
-            su = 0.25 + 0.5 * src_u + (ca * lu - sa * lv) / scale
-            sv = 0.25 + 0.5 * src_v + (sa * lu + ca * lv) / scale
-            num = num + w * sample_wrap(x, su, sv)
-            den = den + w
-    assert isinstance(num, torch.Tensor)  # the loops above always run
-    return (num / (den + 1e-12)).clamp(0.0, 1.0)
+    cvar = param4d(color_variation, x)
+    gray = x.shape[1] == 1
+
+    # per batch item (detached: they only choose where to look), so that a batch gives each item
+    # what it gives alone: how far stamps reach, how far they may move, how much the input is shrunk
+    with torch.no_grad():
+        reach = _stamp_reach(torch.maximum(width, height).abs() * (1.0 + variation.abs()), ms)
+        slack = MAX_PATCH_RADIUS + 0.5 - reach
+        moved = torch.where(slack >= n / 2, dis.abs().clamp_max(n / 2), torch.minimum(dis.abs(), slack.clamp_min(0.0)))
+        within = torch.floor(reach + moved + 0.5).clamp_max(MAX_PATCH_RADIUS)
+        shrink = n / torch.minimum(width, height).abs().clamp_min(1e-3)
+        sigma = torch.where(shrink > 2.0, 0.35 * shrink / size, torch.zeros_like(shrink))
+    radius = int(within.max())
+    picture = gaussian_blur(x, sigma) if float(sigma.max()) > 0 else x
+    warped = bool((warp != 0).any())
+    if warped:
+        slope_u, slope_v = gradient_wrap(gaussian_blur(to_gray(x), 1.6 * BLUR_SIGMA * PX))
+
+    # per cell and stamp: direction, two size draws, rotation, three colour draws
+    tables = _cell_tables(n, seed, 2 * 7, x).reshape(2, 7, n, n)
+    u, v = _grid(x)
+    i0 = torch.floor(u * n).long()
+    j0 = torch.floor(v * n).long()
+    if gray:
+        out = cvar.clamp(0.0, 1.0).expand(-1, 1, size, size)
+    else:
+        back = param4d(background_color, x)
+        out = back.expand(-1, x.shape[1], size, size) if back.shape[1] == x.shape[1] else \
+            back[:, :x.shape[1]].expand(-1, -1, size, size)
+    for dj in range(-radius, radius + 1):
+        for di in range(-radius, radius + 1):
+            i, j = i0 + di, j0 + dj
+            cells = torch.remainder(j, n) * n + torch.remainder(i, n)
+            near = (max(abs(di), abs(dj)) <= within).to(x.dtype)
+            for stamp in tables:
+                angle, r1, r2, turn, c0, c1, c2 = (t.reshape(-1)[cells] for t in stamp)
+                a = angle * (2 * math.pi)
+                cu = (i.to(x.dtype) + 0.5 + _fold(dis * torch.cos(a), n, slack)) / n
+                cv = (j.to(x.dtype) + 0.5 + _fold(dis * torch.sin(a), n, slack)) / n
+                lu, lv = u - cu, v - cv
+                t = (rot + turn * rvar) * (2 * math.pi)
+                ca, sa = torch.cos(t), torch.sin(t)
+                grow = (r1 - r2) * variation
+                w = (width + grow).abs().clamp_min(1e-3) / n
+                h = (height + grow).abs().clamp_min(1e-3) / n
+                pu = (ca * lu + sa * lv) / w
+                pv = (ca * lv - sa * lu) / h
+                inside = ((pu.abs() <= 0.5) & (pv.abs() <= 0.5)).to(x.dtype)
+                qu, qv = pu, pv
+                if warped:
+                    qu = qu + warp * sample_wrap(slope_u, pu + 0.5, pv + 0.5)
+                    qv = qv + warp * sample_wrap(slope_v, pu + 0.5, pv + 0.5)
+                mask = torch.exp(-PATCH_MASK_FALLOFF * (qu * qu + qv * qv))
+                alpha = ((mask - (1.0 - ms)) / (ms * (1.0 - mp)).clamp_min(1e-6)).clamp(0.0, 1.0) * inside * near
+                tint = torch.cat([1.0 - c * cvar for c in (c0, c1, c2)], dim=1).clamp(0.0, 1.0)
+                if gray:
+                    tint = tint.mean(dim=1, keepdim=True)
+                elif x.shape[1] == 4:
+                    tint = torch.cat([tint, torch.ones_like(tint[:, :1])], dim=1)
+                out = lerp(out, sample_wrap(picture, pu + 0.5, pv + 0.5) * tint, alpha)
+    return out.clamp(0.0, 1.0)
 
 
-def _seam_weight(t: torch.Tensor, size, precision, warping, gray) -> torch.Tensor:
-    """1 at the image border (t = 0 or 1), falling to 0 at ``size`` / 2 from it."""
-    d = torch.minimum(t, 1.0 - t) + warping * (gray - 0.5) * 0.1
-    half = size * 0.5
-    soft = ((1.0 - precision) * half).clamp_min(1e-3)
-    return (0.5 + (half - d) / (2 * soft)).clamp(0.0, 1.0)
+def _seam_weight(t: torch.Tensor, size, precision, warping, guide: torch.Tensor, angle: float) -> torch.Tensor:
+    """How much of the image shifted by half replaces the image at ``t`` (1 at the border, 0 in
+    the middle). The MATch reference's facts: the kept share is Levels of 1 − x² (x = |2t − 1|)
+    with input range [1 − size, 1 − precision · size], bent by a Directional Warp of the blurred
+    image (``guide``) of intensity ``warping`` (−100..100) there and back along the axis."""
+    x = (2.0 * t - 1.0).abs()
+    keep = ((1.0 - x * x - (1.0 - size)) / (size * (1.0 - precision)).clamp_min(1e-6)).clamp(0.0, 1.0)
+    keep = keep.expand(max(keep.shape[0], guide.shape[0]), 1, guide.shape[-2], guide.shape[-1])
+    if bool((param4d(warping, guide) != 0).any()):
+        keep = directional_warp(keep, guide, intensity=warping, warpangle=angle)
+        keep = directional_warp(keep, guide, intensity=warping, warpangle=angle + 0.5)
+    return 1.0 - keep
 
 
-def make_it_tile_photo(source: torch.Tensor, *, mask_warping_h=0.5, mask_size_h=0.5, mask_precision_h=0.5,
-                       mask_warping_v=0.5, mask_size_v=0.5, mask_precision_v=0.5):
+def make_it_tile_photo(source: torch.Tensor, *, mask_warping_h=0.0, mask_size_h=0.5, mask_precision_h=0.5,
+                       mask_warping_v=0.0, mask_size_v=0.5, mask_precision_v=0.5):
     """Make It Tile Photo: hides the seams of a photo by cross-fading, near each border, to the
     image shifted by half its size (whose middle then straddles the border), first horizontally,
-    then vertically. ``mask_size`` is the blend band (fraction of the image), ``mask_precision``
-    its sharpness, ``mask_warping`` bends it with the image's values."""
+    then vertically (``_seam_weight``: ``mask_size`` how far the fade reaches, ``mask_precision``
+    its hardness, ``mask_warping`` bends it with the image's blurred values). Our choice: the two
+    fades one after the other; the reference crosses them in one mask and lays two more discs of
+    the image shifted by a quarter at the middles of the edges."""
     x = source
     u, v = _grid(x)
-    gray = to_gray(x)
+    guide = blur_hq(to_gray(x), intensity=2.75)
     w = x.shape[-1]
-    wh = _seam_weight(u, param4d(mask_size_h, x), param4d(mask_precision_h, x), param4d(mask_warping_h, x), gray)
+    wh = _seam_weight(u, param4d(mask_size_h, x), param4d(mask_precision_h, x), mask_warping_h, guide, 0.0)
     h = lerp(x, torch.roll(x, w // 2, dims=-1), wh)
-    wv = _seam_weight(v, param4d(mask_size_v, x), param4d(mask_precision_v, x), param4d(mask_warping_v, x),
-                      to_gray(h))
+    wv = _seam_weight(v, param4d(mask_size_v, x), param4d(mask_precision_v, x), mask_warping_v,
+                      blur_hq(to_gray(h), intensity=2.75), 0.25)
     return lerp(h, torch.roll(h, x.shape[-2] // 2, dims=-2), wv).clamp(0.0, 1.0)

@@ -73,14 +73,23 @@ _gray_and_color("safe_transform_grayscale", "safe_transform", F.safe_transform, 
                 params=_SAFE, context=("seed",))
 
 _PATCH = (Param("octave", 3, 0, 8, kind="int", doc="2^octave cells per side"),
-          Param("size", 1.0, 0.1, 4.0, doc="patch scale"),
-          Param("disorder", 0.0), Param("mask_size", 0.5), Param("mask_precision", 0.5),
-          Param("mask_warping", 0.0), Param("rotation", 0.0, doc="turns"),
-          Param("rotation_variation", 0.0))
+          Param("mask_size", 1.0, doc="reach of the stamps' round mask"),
+          Param("mask_precision", 0.5, doc="hardness of the mask's edge"),
+          Param("mask_warping", 0.0, -100.0, 100.0, doc="the mask's edge bent along the input's slope"),
+          Param("pattern_size_width", 200.0, 0.0, 1000.0, doc="stamp width, percent of a cell"),
+          Param("pattern_size_height", 200.0, 0.0, 1000.0, doc="stamp height, percent of a cell"),
+          Param("disorder", 0.0, doc="random move of each stamp, image widths"),
+          Param("size_variation", 0.0, 0.0, 100.0, doc="random size change, percent of a cell"),
+          Param("rotation", 0.0, -1.0, 1.0, doc="turns"),
+          Param("rotation_variation", 0.0, doc="random extra turn, up to this many turns"),
+          Param("color_variation", 0.0, doc="random darkening of each stamp (grayscale: Luminosity Variation)"),
+          Param("background_color", (0.0, 0.0, 0.0, 1.0), size=4, doc="where no stamp reaches (colour node)"))
 _gray_and_color("make_it_tile_patch_grayscale", "make_it_tile_patch", F.make_it_tile_patch, "source",
                 "Make It Tile Patch", outputs=("make_it_tile_patch",), params=_PATCH, context=("seed",))
 
-_PHOTO = tuple(Param(f"{name}_{axis}", 0.5) for axis in ("h", "v")
-               for name in ("mask_warping", "mask_size", "mask_precision"))
+_PHOTO = tuple(p for axis in ("h", "v") for p in (
+    Param(f"mask_warping_{axis}", 0.0, -100.0, 100.0, doc="the fade bent along the blurred image"),
+    Param(f"mask_size_{axis}", 0.5, doc="how far the fade reaches"),
+    Param(f"mask_precision_{axis}", 0.5, doc="hardness of the fade")))
 _gray_and_color("make_it_tile_photo_grayscale", "make_it_tile_photo", F.make_it_tile_photo, "source",
                 "Make It Tile Photo", outputs=("make_it_tile_photo",), params=_PHOTO)
