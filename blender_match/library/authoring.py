@@ -13,6 +13,10 @@ COPY, ADD, SUBTRACT, MULTIPLY, ADD_SUB, MAX, MIN, SWITCH, DIVIDE, OVERLAY, SCREE
 # the Tile Generator's own Blending Mode code for Max: the library's tile layouts were authored
 # with overlapping tiles keeping the highest (Substance's default is Add)
 TILES_MAX = 2
+# Ambient Occlusion 2's model our graphs were authored, sampled and trained with: the three-blur
+# occlusion, not the reference's construction that translated production files get (model 0;
+# docs/generators.md, stop 32)
+OUR_OCCLUSION = 1
 
 
 def gradient_keys(stops) -> dict:
@@ -122,7 +126,8 @@ def normal_and_ao(g: SbsGraph, height: str, intensity: float, height_depth: floa
     """The tail of a height map: the normal node ``normal`` (OpenGL, ``intensity``) and the ambient
     occlusion node ``ao`` (``height_depth``, ``spreading``), both from ``height``. Returns ``normal``."""
     g.add(normal, "normal", {"input1": height}, intensity=intensity, inversedy=True)
-    g.add(ao, "ambient_occlusion_2", {"source": height}, height_depth=height_depth, spreading=spreading)
+    g.add(ao, "ambient_occlusion_2", {"source": height}, height_depth=height_depth, spreading=spreading,
+          model=OUR_OCCLUSION)
     return normal
 
 

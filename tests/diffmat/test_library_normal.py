@@ -102,6 +102,41 @@ def test_ambient_occlusion_2_flat_is_one_and_pit_is_dark():
     assert ao[0, 0, 16, 16] < 0.9 and ao[0, 0, 0, 0] > 0.99
 
 
+def test_ambient_occlusion_2_as_the_reference_draws_it():
+    """The reference's facts: a texel below its neighbourhood's mean by d gives 1 − 2d (squared
+    on flat ground), a ridge nothing; the equalizer at 0 leaves every band as it is, its fine
+    bands raised sharpen the occlusion and lowered spread it; Levels at the end (a production dry
+    mud sets 0.513 as its low, which turns its cells' seams into black cracks)."""
+    size = 64
+    groove = torch.ones(1, 1, size, size)
+    groove[..., 31:34, :] = 0.0                 # three pixels wide, across the image
+    plain = F.ambient_occlusion(groove, spreading=0.08)
+    assert float(plain[0, 0, 31, 5]) < 0.3 and float(plain[0, 0, 5, 5]) == pytest.approx(1.0, abs=1e-5)
+    assert float(F.ambient_occlusion(1 - groove, spreading=0.08)[0, 0, 32, 5]) == pytest.approx(1.0, abs=1e-5)
+    torch.testing.assert_close(F.ambient_occlusion(groove, spreading=0.08, equalizer=(0.0, 0.0, 0.0)), plain)
+    sharper = F.ambient_occlusion(groove, spreading=0.08, equalizer=(0.0, 0.0, 1.0))
+    assert float(sharper[0, 0, 31, 5]) < 0.5 * float(plain[0, 0, 31, 5])
+    softer = F.ambient_occlusion(groove, spreading=0.08, equalizer=(0.0, -0.4, -0.4))
+    assert float(softer[0, 0, 30, 5]) < 0.95 < float(plain[0, 0, 30, 5])
+    cut = F.ambient_occlusion(groove, spreading=0.08, levels=(0.513, 0.5, 1.0))
+    assert float(cut[0, 0, 31, 5]) == 0.0 and float(cut[0, 0, 5, 5]) > 0.99
+
+
+def test_ambient_occlusion_2_keeps_our_three_blur_model_for_the_library():
+    """Model 1 is the occlusion our library graphs were authored with (three blurs, a gain of
+    8 x height depth): a pit darkens at its centre and open ground stays white, but not as
+    Substance's construction (model 0) draws it; an unknown model is refused."""
+    pit = 1 - bump(64, sigma=0.1)
+    ours = F.ambient_occlusion(pit, height_depth=0.3, spreading=0.5, model=1)
+    substance = F.ambient_occlusion(pit, height_depth=0.3, spreading=0.5, model=0)
+    assert float(ours[0, 0, 32, 32]) < 0.9 and float(ours[0, 0, 0, 0]) > 0.99
+    assert (ours - substance).abs().max() > 0.05
+    torch.testing.assert_close(F.ambient_occlusion(torch.full((1, 1, 16, 16), 0.4), model=1),
+                               torch.ones(1, 1, 16, 16), atol=1e-5, rtol=0)
+    with pytest.raises(DiffMatError, match="model"):
+        F.ambient_occlusion(pit, model=2)
+
+
 def test_edge_detect_finds_square_contour():
     """Black lines on white unless inverted: the MATch reference's Edge Detect ends by inverting
     the lines it found (its ``invert`` inverts them back)."""

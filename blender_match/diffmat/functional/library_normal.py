@@ -28,6 +28,9 @@ from .common import (
 )
 from .distance import distance as distance_fade
 from .library_adjust import linear_to_srgb, srgb_to_linear
+from .library_blur import blur_hq
+from .relief import height_to_normal
+from .tone import levels as tone_levels
 
 __all__ = ["normal_combine", "normal_blend", "normal_normalise", "normal_to_height", "curvature",
            "curvature_smooth", "hbao", "ambient_occlusion", "edge_detect", "bevel",
@@ -244,29 +247,69 @@ def hbao(input: torch.Tensor, *, height_depth=0.1, radius=1.0, quality: int = 4,
     return (1.0 - occ / dirs).clamp(0.0, 1.0)
 
 
-AO_SCALES = (0.25, 0.5, 1.0)   # fractions of the spreading radius
+AO_DEPTH_REFERENCE = 0.15      # the Height Depth at which ours is the reference's (its own default)
+AO_BAND_BLURS = (2.2, 3.3)     # Blur HQ intensities that split the occlusion into three bands
+AO_SCALES = (0.25, 0.5, 1.0)   # the three-blur model: fractions of the spreading radius
+AO_MODELS = {0: "substance", 1: "three blurs"}
 
 
 def ambient_occlusion(source: torch.Tensor, *, height_depth=0.15, spreading=0.15,
-                      equalizer=(0.5, 0.5, 0.5), levels=(0.0, 0.5, 1.0)):
-    """Ambient Occlusion (the older, blur-based version): occlusion is how far the neighbourhood
-    average (Gaussian, three scales up to ``spreading`` x 0.25 image widths, weighted low / mid /
-    high by ``equalizer``) rises above the height, times ``height_depth`` x 8. ``levels``
-    (low, mid, high) remaps the result, mid as a gamma. Flat height gives 1."""
-    h = to_gray(source)
+                      equalizer=(0.0, 0.0, 0.0), levels=(0.0, 0.5, 1.0), model: int = 0):
+    """Ambient Occlusion (the older, blur-based node). ``model`` 0 draws it as the MATch
+    reference does (``_reference_occlusion``), which is what Substance's node gives; 1 is the
+    construction this engine had before (``_three_blur_occlusion``), which our shipped library
+    graphs were authored and trained with and keep (docs/generators.md, stop 32)."""
+    if model not in AO_MODELS:
+        raise DiffMatError(f"ambient_occlusion_2.model: expected one of {sorted(AO_MODELS)}, got {model!r}")
+    occlusion = _reference_occlusion if model == 0 else _three_blur_occlusion
+    return occlusion(to_gray(source), param4d(height_depth, source), param4d(spreading, source),
+                     param4d(equalizer, source), param4d(levels, source))
+
+
+def _reference_occlusion(h, height_depth, spreading, equalizer, levels):
+    """A texel is occluded by how far it sits below its neighbourhood: the Blur HQ (spreading x
+    128) of the inverted height plus the height is 1 on a flat or convex surface and 1 − depth in
+    a hollow of that depth, and Levels from 0.5 maps it to 1 − 2 x depth; it is squared on flat
+    ground (times itself plus 1 − the blue of the height's normal map at intensity 16). The result
+    is split into three bands by Blur HQ of 2.2 and 3.3; the equalizer (low, mid, high; 0 leaves a
+    band as it is) raises the low band's mid point by half its value and scales the mid and high
+    bands by 1 + 2 x its value; ``levels`` (in low, mid, high) is a final Levels.
+
+    Our choices: the bands are split at full resolution (the reference halves the image for each,
+    with blurs of the same size relative to the image); ``height_depth`` (which the reference
+    lacks) scales the depth, ours equal to the reference's at Substance's default 0.15."""
+    depth = height_depth / AO_DEPTH_REFERENCE
+    rise = (1.0 - blur_hq(1.0 - h, intensity=spreading * 128.0) - h).clamp_min(0.0)
+    ao = (1.0 - 2.0 * depth * rise).clamp(0.0, 1.0)
+    flat = height_to_normal(h, intensity=16.0, input2alpha=False)[:, 2:3]
+    ao = ao * (ao + 1.0 - flat).clamp_max(1.0)
+    low_cut, mid_cut = AO_BAND_BLURS
+    mid_band = blur_hq(ao, intensity=low_cut)
+    low_band = blur_hq(mid_band, intensity=mid_cut)
+    out = tone_levels(low_band, levelinmid=(equalizer[:, 0:1] + 1.0) * 0.5)
+    out = out + (mid_band - low_band) * (1.0 + 2.0 * equalizer[:, 1:2])
+    out = out + (ao - mid_band) * (1.0 + 2.0 * equalizer[:, 2:3])
+    return tone_levels(out.clamp(0.0, 1.0), levelinlow=levels[:, 0:1], levelinmid=levels[:, 1:2],
+                       levelinhigh=levels[:, 2:3])
+
+
+def _three_blur_occlusion(h, height_depth, spreading, equalizer, levels):
+    """Occlusion is how far the neighbourhood average (Gaussian, three scales up to spreading x
+    0.25 image widths, weighted low / mid / high by 1 + 2 x the equalizer) rises above the height,
+    times height_depth x 8; ``levels`` (low, mid, high) remaps the result, mid as a gamma inside
+    the window. Flat height gives 1."""
     size = h.shape[-1]
     fx, fy = frequencies(size, h.device, h.dtype)
     f2 = fx * fx + fy * fy
-    spread = param4d(spreading, h).clamp_min(1e-4) * 0.25
-    eq = param4d(equalizer, h) * 2.0
+    spread = spreading.clamp_min(1e-4) * 0.25
+    weights = 1.0 + 2.0 * equalizer
     transfer: float | torch.Tensor = 0.0
     for k, frac in enumerate(AO_SCALES):
         sigma = spread * frac
-        transfer = transfer + eq[:, k:k + 1] * (torch.exp(-2 * math.pi ** 2 * sigma ** 2 * f2) - 1.0)
+        transfer = transfer + weights[:, k:k + 1] * (torch.exp(-2 * math.pi ** 2 * sigma ** 2 * f2) - 1.0)
     rise = torch.fft.irfft2(torch.fft.rfft2(h) * transfer, s=h.shape[-2:]) / len(AO_SCALES)
-    ao = (1.0 - rise.clamp_min(0.0) * param4d(height_depth, h) * 8.0).clamp(0.0, 1.0)
-    lv = param4d(levels, h)
-    lo, mid, hi = lv[:, 0:1], lv[:, 1:2], lv[:, 2:3]
+    ao = (1.0 - rise.clamp_min(0.0) * height_depth * 8.0).clamp(0.0, 1.0)
+    lo, mid, hi = levels[:, 0:1], levels[:, 1:2], levels[:, 2:3]
     x = ((ao - lo) / (hi - lo).clamp_min(1e-3)).clamp(1e-6, 1.0)
     m = ((mid - lo) / (hi - lo).clamp_min(1e-3)).clamp(0.01, 0.99)
     gamma = math.log(0.5) / torch.log(m)

@@ -56,10 +56,14 @@ register(NodeSpec(
 register(NodeSpec(
     "ambient_occlusion_2", NA, F.ambient_occlusion,
     inputs=(Input("source"),), outputs=("ambient_occlusion",),
-    params=(Param("height_depth", 0.15), Param("spreading", 0.15),
-            Param("equalizer", (0.5, 0.5, 0.5), size=3, doc="low, mid, high scale weights"),
-            Param("levels", (0.0, 0.5, 1.0), size=3, doc="low, mid (gamma), high")),
-    doc="Ambient Occlusion (blur-based)."))
+    params=(Param("height_depth", 0.15, doc="depth scale (ours; 0.15 is the reference's)"),
+            Param("spreading", 0.15, doc="reach: a Blur HQ of spreading x 128"),
+            Param("equalizer", (0.0, 0.0, 0.0), -0.5, 0.5, size=3,
+                  doc="low, mid, high bands (0 leaves a band as it is)"),
+            Param("levels", (0.0, 0.5, 1.0), size=3, doc="final Levels: in low, mid, high"),
+            Param("model", 0, kind="enum", choices=(0, 1),
+                  doc="0 Substance's (the MATch reference's), 1 three blurs (ours, our library's)")),
+    doc="Ambient Occlusion (blur-based, the older node)."))
 
 register(NodeSpec(
     "edge_detect", NA, F.edge_detect,

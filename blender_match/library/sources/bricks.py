@@ -28,6 +28,7 @@ from blender_match.library.authoring import (
     ADD_SUB,
     COPY,
     MAX,
+    OUR_OCCLUSION,
     OVERLAY,
     SOFT_LIGHT,
     SUBTRACT,
@@ -81,7 +82,8 @@ def build() -> SbsGraph:
     g.add("normal_main", "normal", {"input1": "height"}, intensity=5.0, inversedy=True)
     g.add("normal_sand", "normal", {"input1": "sand"}, intensity=0.8, inversedy=True)
     g.add("normal", "normal_combine", {"input": "normal_main", "input_1": "normal_sand"})
-    g.add("ao", "ambient_occlusion_2", {"source": "height"}, height_depth=0.1, spreading=0.1)
+    g.add("ao", "ambient_occlusion_2", {"source": "height"}, height_depth=0.1, spreading=0.1,
+          model=OUR_OCCLUSION)
 
     # ---- colour ------------------------------------------------------------------------------
     g.add("brick_base", "uniform", outputcolor=(0.50, 0.23, 0.15, 1.0))

@@ -34,6 +34,7 @@ from blender_match.library.authoring import (
     ADD_SUB,
     MAX,
     MULTIPLY,
+    OUR_OCCLUSION,
     OVERLAY,
     SOFT_LIGHT,
     SUBTRACT,
@@ -103,7 +104,8 @@ def build() -> SbsGraph:
     g.add("normal_main", "normal", {"input1": "height"}, intensity=2.0, inversedy=True)
     g.add("normal_fibres", "normal", {"input1": "fibres_along"}, intensity=0.3, inversedy=True)
     g.add("normal", "normal_combine", {"input": "normal_main", "input_1": "normal_fibres"})
-    g.add("ao", "ambient_occlusion_2", {"source": "height"}, height_depth=0.06, spreading=0.08)
+    g.add("ao", "ambient_occlusion_2", {"source": "height"}, height_depth=0.06, spreading=0.08,
+          model=OUR_OCCLUSION)
 
     # ---- colour ------------------------------------------------------------------------------
     g.add("base", "uniform", outputcolor=(0.56, 0.43, 0.30, 1.0))

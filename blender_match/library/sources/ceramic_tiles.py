@@ -29,6 +29,7 @@ from blender_match.library.authoring import (
     COPY,
     MAX,
     MULTIPLY,
+    OUR_OCCLUSION,
     OVERLAY,
     SOFT_LIGHT,
     TILES_MAX,
@@ -80,7 +81,8 @@ def build() -> SbsGraph:
           blendingmode=MULTIPLY, opacitymult=1.0)
     g.add("normal_ripples", "normal", {"input1": "ripples_masked"}, intensity=0.25, inversedy=True)
     g.add("normal", "normal_combine", {"input": "normal_main", "input_1": "normal_ripples"})
-    g.add("ao", "ambient_occlusion_2", {"source": "height"}, height_depth=0.1, spreading=0.08)
+    g.add("ao", "ambient_occlusion_2", {"source": "height"}, height_depth=0.1, spreading=0.08,
+          model=OUR_OCCLUSION)
 
     # ---- colour ------------------------------------------------------------------------------
     g.add("glaze_base", "uniform", outputcolor=(0.78, 0.80, 0.78, 1.0))

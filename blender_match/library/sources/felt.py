@@ -27,6 +27,7 @@ from __future__ import annotations
 from blender_match.library.authoring import (
     ADD_SUB,
     MAX,
+    OUR_OCCLUSION,
     SCREEN,
     SOFT_LIGHT,
     TILES_MAX,
@@ -84,7 +85,8 @@ def build() -> SbsGraph:
     g.add("normal_fibres", "normal", {"input1": "fibres"}, intensity=0.6, inversedy=True)
     g.bind("normal_fibres", "intensity", lerp(0.05, 0.5, get("fuzz")).graph())
     g.add("normal", "normal_combine", {"input": "normal_main", "input_1": "normal_fibres"})
-    g.add("ao", "ambient_occlusion_2", {"source": "height"}, height_depth=0.08, spreading=0.08)
+    g.add("ao", "ambient_occlusion_2", {"source": "height"}, height_depth=0.08, spreading=0.08,
+          model=OUR_OCCLUSION)
 
     # ---- colour ------------------------------------------------------------------------------
     g.add("wool", "uniform", outputcolor=(0.55, 0.12, 0.12, 1.0))

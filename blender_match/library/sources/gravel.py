@@ -30,6 +30,7 @@ from blender_match.library.authoring import (
     COPY,
     MAX,
     MULTIPLY,
+    OUR_OCCLUSION,
     OVERLAY,
     SOFT_LIGHT,
     SUBTRACT,
@@ -116,7 +117,8 @@ def build() -> SbsGraph:
     g.bind("n_main", "intensity", lerp(1.0, 12.0, get("relief")).graph())
     g.add("n_grain", "normal", {"input1": "speckle"}, intensity=0.5, inversedy=True, input2alpha=False)
     g.add("normal", "normal_combine", {"input": "n_main", "input_1": "n_grain"})
-    g.add("ao", "ambient_occlusion_2", {"source": "height"}, height_depth=0.25, spreading=0.08)
+    g.add("ao", "ambient_occlusion_2", {"source": "height"}, height_depth=0.25, spreading=0.08,
+          model=OUR_OCCLUSION)
 
     # ---- colour --------------------------------------------------------------------------------
     g.add("tones_l", "gradient", {"input1": "id_l_w"}, **gradient_keys(STONE_TONES))

@@ -32,6 +32,7 @@ from blender_match.library.authoring import (
     COPY,
     MAX,
     MULTIPLY,
+    OUR_OCCLUSION,
     SOFT_LIGHT,
     TILES_MAX,
     ao_darken,
@@ -84,7 +85,8 @@ def build() -> SbsGraph:
     g.bind("normal_main", "intensity", lerp(1.0, 10.0, get("stitch_depth")).graph())
     g.add("normal_fuzz", "normal", {"input1": "fuzz_soft"}, intensity=0.4, inversedy=True)
     g.add("normal", "normal_combine", {"input": "normal_main", "input_1": "normal_fuzz"})
-    g.add("ao", "ambient_occlusion_2", {"source": "height"}, height_depth=0.15, spreading=0.05)
+    g.add("ao", "ambient_occlusion_2", {"source": "height"}, height_depth=0.15, spreading=0.05,
+          model=OUR_OCCLUSION)
 
     # ---- colour ------------------------------------------------------------------------------
     g.add("yarn", "uniform", outputcolor=(0.58, 0.53, 0.47, 1.0))

@@ -28,6 +28,7 @@ from blender_match.library.authoring import (
     ADD,
     ADD_SUB,
     MULTIPLY,
+    OUR_OCCLUSION,
     OVERLAY,
     SOFT_LIGHT,
     SUBTRACT,
@@ -80,7 +81,8 @@ def build() -> SbsGraph:
     g.add("normal_main", "normal", {"input1": "height"}, intensity=3.0, inversedy=True)
     g.add("normal_pores", "normal", {"input1": "pores_noise"}, intensity=0.3, inversedy=True)
     g.add("normal", "normal_combine", {"input": "normal_main", "input_1": "normal_pores"})
-    g.add("ao", "ambient_occlusion_2", {"source": "height"}, height_depth=0.15, spreading=0.05)
+    g.add("ao", "ambient_occlusion_2", {"source": "height"}, height_depth=0.15, spreading=0.05,
+          model=OUR_OCCLUSION)
 
     # ---- colour ------------------------------------------------------------------------------
     g.add("dye", "uniform", outputcolor=(0.30, 0.15, 0.08, 1.0))

@@ -32,6 +32,7 @@ from blender_match.library.authoring import (
     COPY,
     MAX,
     MULTIPLY,
+    OUR_OCCLUSION,
     OVERLAY,
     SOFT_LIGHT,
     TILES_MAX,
@@ -95,7 +96,8 @@ def build() -> SbsGraph:
     g.add("ripples", "perlin_noise_1", seed=88, scale=24.0)
     g.add("normal_ripples", "normal", {"input1": "ripples"}, intensity=0.12, inversedy=True)
     g.add("normal", "normal_combine", {"input": "normal_main", "input_1": "normal_ripples"})
-    g.add("ao", "ambient_occlusion_2", {"source": "height"}, height_depth=0.12, spreading=0.06)
+    g.add("ao", "ambient_occlusion_2", {"source": "height"}, height_depth=0.12, spreading=0.06,
+          model=OUR_OCCLUSION)
 
     # ---- colour ------------------------------------------------------------------------------
     g.add("glaze_base", "uniform", outputcolor=(0.22, 0.48, 0.58, 1.0))

@@ -31,6 +31,7 @@ from blender_match.library.authoring import (
     COPY,
     MAX,
     MULTIPLY,
+    OUR_OCCLUSION,
     constant_map,
     gradient_over,
     keys_near,
@@ -124,7 +125,8 @@ def build() -> SbsGraph:
     g.bind("n_main", "intensity", lerp(1.0, 12.0, get("relief")).graph())
     g.add("n_crumbs", "normal", {"input1": "crumbs"}, intensity=0.8, inversedy=True, input2alpha=False)
     g.add("normal", "normal_combine", {"input": "n_main", "input_1": "n_crumbs"})
-    g.add("ao", "ambient_occlusion_2", {"source": "height"}, height_depth=0.2, spreading=0.08)
+    g.add("ao", "ambient_occlusion_2", {"source": "height"}, height_depth=0.2, spreading=0.08,
+          model=OUR_OCCLUSION)
 
     # ---- colour --------------------------------------------------------------------------------
     g.add("soil_base", "uniform", outputcolor=(0.17, 0.12, 0.08, 1.0))

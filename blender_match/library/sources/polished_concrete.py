@@ -36,6 +36,7 @@ from blender_match.library.authoring import (
     ADD_SUB,
     COPY,
     MAX,
+    OUR_OCCLUSION,
     OVERLAY,
     SOFT_LIGHT,
     SUBTRACT,
@@ -137,7 +138,8 @@ def build() -> SbsGraph:
     g.add("normal_main", "normal", {"input1": "height"}, intensity=0.8, inversedy=True)
     g.add("normal_sand", "normal", {"input1": "sand"}, intensity=0.04, inversedy=True)
     g.add("normal", "normal_combine", {"input": "normal_main", "input_1": "normal_sand"})
-    g.add("ao", "ambient_occlusion_2", {"source": "height"}, height_depth=0.05, spreading=0.05)
+    g.add("ao", "ambient_occlusion_2", {"source": "height"}, height_depth=0.05, spreading=0.05,
+          model=OUR_OCCLUSION)
 
     # ---- roughness and metallic ---------------------------------------------------------------
     g.add("rough_base", "histogram_range", {"input": "clouds"}, range=0.08, position=0.3)

@@ -35,6 +35,7 @@ from __future__ import annotations
 from blender_match.library.authoring import (
     ADD_SUB,
     MULTIPLY,
+    OUR_OCCLUSION,
     OVERLAY,
     SOFT_LIGHT,
     SUBTRACT,
@@ -97,7 +98,8 @@ def build() -> SbsGraph:
     g.add("normal_main", "normal", {"input1": "height"}, intensity=4.0, inversedy=True)
     g.add("normal_grit", "normal", {"input1": "granules"}, intensity=0.4, inversedy=True)
     g.add("normal", "normal_combine", {"input": "normal_main", "input_1": "normal_grit"})
-    g.add("ao", "ambient_occlusion_2", {"source": "height"}, height_depth=0.2, spreading=0.12)
+    g.add("ao", "ambient_occlusion_2", {"source": "height"}, height_depth=0.2, spreading=0.12,
+          model=OUR_OCCLUSION)
 
     # ---- colour ------------------------------------------------------------------------------
     g.add("base", "uniform", outputcolor=(0.24, 0.25, 0.28, 1.0))

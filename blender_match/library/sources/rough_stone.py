@@ -19,7 +19,7 @@ Exposed parameters
 """
 from __future__ import annotations
 
-from blender_match.library.authoring import color_over, constant_map
+from blender_match.library.authoring import OUR_OCCLUSION, color_over, constant_map
 from blender_match.library.expressions import clamp, get, lerp, vector
 from blender_match.translator.runtime import SbsGraph
 
@@ -91,7 +91,8 @@ def build() -> SbsGraph:
     # ---- metallic, AO ---------------------------------------------------------------------------
     constant_map(g, "metal", 0.0)
     g.set_output("metallic", "metal")
-    g.add("ao", "ambient_occlusion_2", {"source": "height"}, height_depth=0.2, spreading=0.15)
+    g.add("ao", "ambient_occlusion_2", {"source": "height"}, height_depth=0.2, spreading=0.15,
+          model=OUR_OCCLUSION)
     g.set_output("ambientocclusion", "ao:ambient_occlusion")
     return g
 

@@ -30,6 +30,7 @@ from blender_match.library.authoring import (
     ADD_SUB,
     COPY,
     MULTIPLY,
+    OUR_OCCLUSION,
     SCREEN,
     SOFT_LIGHT,
     SUBTRACT,
@@ -87,7 +88,8 @@ def build() -> SbsGraph:
     g.add("normal_grain", "normal", {"input1": "grain_soft"}, intensity=0.5, inversedy=True)
     g.bind("normal_grain", "intensity", lerp(0.05, 1.0, get("grain")).graph())
     g.add("normal", "normal_combine", {"input": "normal_main", "input_1": "normal_grain"})
-    g.add("ao", "ambient_occlusion_2", {"source": "height"}, height_depth=0.12, spreading=0.06)
+    g.add("ao", "ambient_occlusion_2", {"source": "height"}, height_depth=0.12, spreading=0.06,
+          model=OUR_OCCLUSION)
 
     # ---- colour ------------------------------------------------------------------------------
     g.add("base", "uniform", outputcolor=(0.035, 0.035, 0.037, 1.0))

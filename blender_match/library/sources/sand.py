@@ -27,6 +27,7 @@ from __future__ import annotations
 from blender_match.library.authoring import (
     ADD_SUB,
     MULTIPLY,
+    OUR_OCCLUSION,
     OVERLAY,
     constant_map,
     gradient_over,
@@ -88,7 +89,8 @@ def build() -> SbsGraph:
     g.bind("n_main", "intensity", lerp(0.5, 8.0, get("relief")).graph())
     g.add("n_grain", "normal", {"input1": "grains"}, intensity=0.25, inversedy=True, input2alpha=False)
     g.add("normal", "normal_combine", {"input": "n_main", "input_1": "n_grain"})
-    g.add("ao", "ambient_occlusion_2", {"source": "height"}, height_depth=0.1, spreading=0.1)
+    g.add("ao", "ambient_occlusion_2", {"source": "height"}, height_depth=0.1, spreading=0.1,
+          model=OUR_OCCLUSION)
 
     # ---- colour ------------------------------------------------------------------------------------
     g.add("sand_base", "uniform", outputcolor=(0.68, 0.60, 0.46, 1.0))

@@ -27,6 +27,7 @@ from blender_match.library.authoring import (
     ADD,
     ADD_SUB,
     MULTIPLY,
+    OUR_OCCLUSION,
     OVERLAY,
     SUBTRACT,
     color_over,
@@ -87,7 +88,8 @@ def build() -> SbsGraph:
           opacitymult=0.35)
     g.add("height", "histogram_range", {"input": "h_pores"}, range=1.0, position=0.5)
     g.add("normal", "normal", {"input1": "height"}, intensity=5.0, inversedy=True, input2alpha=False)
-    g.add("ao", "ambient_occlusion_2", {"source": "height"}, height_depth=0.1, spreading=0.05)
+    g.add("ao", "ambient_occlusion_2", {"source": "height"}, height_depth=0.1, spreading=0.05,
+          model=OUR_OCCLUSION)
 
     # ---- colour -------------------------------------------------------------------------------
     g.add("sand_base", "uniform", outputcolor=(0.74, 0.60, 0.42, 1.0))

@@ -28,6 +28,7 @@ from blender_match.library.authoring import (
     ADD_SUB,
     COPY,
     MULTIPLY,
+    OUR_OCCLUSION,
     color_over,
     constant_map,
     gradient_keys,
@@ -88,7 +89,8 @@ def build() -> SbsGraph:
     g.add("normal_main", "normal", {"input1": "height"}, intensity=10.0, inversedy=True, input2alpha=False)
     g.add("normal_grain", "normal", {"input1": "grain"}, intensity=0.3, inversedy=True, input2alpha=False)
     g.add("normal", "normal_combine", {"input": "normal_main", "input_1": "normal_grain"})
-    g.add("ao", "ambient_occlusion_2", {"source": "height"}, height_depth=0.15, spreading=0.08)
+    g.add("ao", "ambient_occlusion_2", {"source": "height"}, height_depth=0.15, spreading=0.08,
+          model=OUR_OCCLUSION)
 
     # ---- step edges ---------------------------------------------------------------------------
     g.add("edges", "edge_detect", {"input": "frayed"}, edge_width=1.5, edge_roundness=1.0, tolerance=0.02,

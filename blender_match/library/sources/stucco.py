@@ -30,6 +30,7 @@ from blender_match.library.authoring import (
     ADD_SUB,
     MAX,
     MULTIPLY,
+    OUR_OCCLUSION,
     SOFT_LIGHT,
     SUBTRACT,
     constant_map,
@@ -93,7 +94,8 @@ def build() -> SbsGraph:
     g.bind("n_main", "intensity", lerp(0.5, 10.0, get("relief")).graph())
     g.add("n_grain", "normal", {"input1": "spray"}, intensity=0.4, inversedy=True, input2alpha=False)
     g.add("normal", "normal_combine", {"input": "n_main", "input_1": "n_grain"})
-    g.add("ao", "ambient_occlusion_2", {"source": "height"}, height_depth=0.12, spreading=0.06)
+    g.add("ao", "ambient_occlusion_2", {"source": "height"}, height_depth=0.12, spreading=0.06,
+          model=OUR_OCCLUSION)
 
     # ---- colour --------------------------------------------------------------------------------
     g.add("paint", "uniform", outputcolor=(0.86, 0.85, 0.82, 1.0))

@@ -30,6 +30,7 @@ from blender_match.library.authoring import (
     ADD_SUB,
     MAX,
     MULTIPLY,
+    OUR_OCCLUSION,
     SUBTRACT,
     color_over,
     constant_map,
@@ -96,7 +97,8 @@ def build() -> SbsGraph:
     g.add("height", "blend", {"source": "void_floor", "destination": "h_holes", "opacity": "holes_soft"},
           blendingmode=ADD_SUB, opacitymult=0.15)
     g.add("normal", "normal", {"input1": "height"}, intensity=6.0, inversedy=True, input2alpha=False)
-    g.add("ao", "ambient_occlusion_2", {"source": "height"}, height_depth=0.2, spreading=0.1)
+    g.add("ao", "ambient_occlusion_2", {"source": "height"}, height_depth=0.2, spreading=0.1,
+          model=OUR_OCCLUSION)
 
     # ---- colour -------------------------------------------------------------------------------
     g.add("stone", "uniform", outputcolor=(0.80, 0.72, 0.60, 1.0))

@@ -28,6 +28,7 @@ from blender_match.library.authoring import (
     ADD,
     COPY,
     MAX,
+    OUR_OCCLUSION,
     OVERLAY,
     SOFT_LIGHT,
     SUBTRACT,
@@ -98,7 +99,8 @@ def build() -> SbsGraph:
     g.add("height_grain", "blend", {"source": "pores", "destination": "planks"},
           blendingmode=SUBTRACT, opacitymult=0.05)
     g.add("height", "histogram_range", {"input": "height_grain"}, range=0.9, position=0.55)
-    g.add("ao", "ambient_occlusion_2", {"source": "height"}, height_depth=0.12, spreading=0.1)
+    g.add("ao", "ambient_occlusion_2", {"source": "height"}, height_depth=0.12, spreading=0.1,
+          model=OUR_OCCLUSION)
     ao_darken(g, "basecolor", "wood_gaps", floor=0.2, opacitymult=0.5)
 
     g.add("normal_main", "normal", {"input1": "height"}, intensity=6.0, inversedy=True)

@@ -27,6 +27,7 @@ from blender_match.library.authoring import (
     COPY,
     MAX,
     MULTIPLY,
+    OUR_OCCLUSION,
     SOFT_LIGHT,
     SUBTRACT,
     ao_darken,
@@ -73,7 +74,8 @@ def build() -> SbsGraph:
     g.bind("normal_main", "intensity", lerp(1.0, 8.0, get("thread_relief")).graph())
     g.add("normal_fuzz", "normal", {"input1": "fuzz_soft"}, intensity=0.3, inversedy=True)
     g.add("normal", "normal_combine", {"input": "normal_main", "input_1": "normal_fuzz"})
-    g.add("ao", "ambient_occlusion_2", {"source": "height"}, height_depth=0.12, spreading=0.06)
+    g.add("ao", "ambient_occlusion_2", {"source": "height"}, height_depth=0.12, spreading=0.06,
+          model=OUR_OCCLUSION)
 
     # ---- colour ------------------------------------------------------------------------------
     g.add("warp_base", "uniform", outputcolor=(0.20, 0.28, 0.42, 1.0))
