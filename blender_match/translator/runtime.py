@@ -172,11 +172,44 @@ class SbsGraph(MaterialGraph):
         return out
 
     def forward(self, size: int = 512, seed: int = 0, theta=None, cache: bool = True):
+        if theta is not None and theta.dim() == 2 and theta.shape[0] > 1 and self._discrete_varies(theta):
+            return _stack_outputs([self.forward(size, seed, row[None], cache) for row in theta])
         self._batch = None
         try:
             return super().forward(size, seed, theta, cache)
         finally:
             self._batch = None
+
+    def _discrete_varies(self, theta: torch.Tensor) -> bool:
+        """Whether a discrete parameter (an integer, a switch) bound to the exposed parameters
+        takes different values across the batch ``theta`` (B, P): a node draws one value for its
+        whole batch, so such a batch is evaluated item by item."""
+        discrete = [(n, p, c) for n, b in self._compiled.items() for p, c in b.items()
+                    if c.variables and p not in self.node(n).theta]
+        if not discrete:
+            return False
+        batch = MaterialGraph._split(self, theta, self.plan()).get(EXPOSED)
+        if batch is None:
+            return False
+        variables = self.exposed.values(batch)
+        for name, param, compiled in discrete:
+            value = compiled(variables)
+            if isinstance(value, str):
+                continue
+            value = torch.as_tensor(value).detach()
+            if value.dim() == 0 or value.shape[0] != theta.shape[0]:
+                continue  # not per item: the same for the whole batch
+            spec, where = self.node(name).spec.param(param), f"{name}.{param}"
+            first = _discrete(spec, value[0], where)
+            if any(_discrete(spec, row, where) != first for row in value[1:]):
+                return True
+        return False
+
+
+def _stack_outputs(items: list[dict[str, torch.Tensor]]) -> dict[str, torch.Tensor]:
+    """The outputs of single evaluations as one batch (an output that is the same for every item
+    comes back with batch 1 from each and is stacked all the same)."""
+    return {usage: torch.cat([item[usage] for item in items]) for usage in items[0]}
 
 
 def _discrete(p, value, where: str):

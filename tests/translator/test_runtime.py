@@ -52,6 +52,28 @@ def test_theta_drives_the_bound_parameter():
     torch.testing.assert_close(out[:, 3, 0, 0], torch.tensor([0.5, 1.0]))
 
 
+def test_a_batch_whose_bound_integer_differs_is_drawn_item_by_item():
+    """A node takes one value of a discrete parameter for its whole batch: a cell count bound to
+    an exposed parameter used to take the first item's count for every item (a production cork's
+    and our cork's and carpet's sample banks were drawn so). Each item now gets its own."""
+    g = SbsGraph("cells")
+    g.expose("size", 0.5)
+    g.add("cells", "cells_4", seed=3, scale=8, disorder=0.5)
+    g.bind("cells", "scale", {"nodes": {"0": {"function": "get_float1", "inputs": {}, "data": "size"},
+                                        "1": {"function": "const_float1", "inputs": {}, "data": 16.0},
+                                        "2": {"function": "mul", "inputs": {"a": "0", "b": "1"}}},
+                              "root": "2"})
+    g.set_output("height", "cells")
+    g.set_mode("exposed")
+    theta = torch.tensor([[0.25], [1.0], [0.25]])
+    batch = g(size=32, theta=theta)["height"]
+    for i in range(3):
+        alone = SbsGraph.forward(g, size=32, theta=theta[i:i + 1])["height"]
+        torch.testing.assert_close(batch[i:i + 1], alone)
+    assert (batch[0] - batch[1]).abs().max() > 0.1      # 4 cells against 16
+    torch.testing.assert_close(batch[0], batch[2])
+
+
 def test_a_binding_is_compiled_once(monkeypatch):
     g = bound_graph()
     g.bind("color", "outputcolor", getter())
