@@ -388,8 +388,20 @@ def make_it_tile_patch(source: torch.Tensor, *, octave: int = 3, mask_size=1.0, 
     if warped:
         slope_u, slope_v = gradient_wrap(gaussian_blur(to_gray(x), 1.6 * BLUR_SIGMA * PX))
 
-    # per cell and stamp: direction, two size draws, rotation, three colour draws
-    tables = _cell_tables(n, seed, 2 * 7, x).reshape(2, 7, n, n)
+    # per cell and stamp, once (B|1, quantity, stamp, cell): where its centre moves (cells), how it
+    # turns, its size (image widths) and its tint; a pixel gathers these from its candidate cells
+    def flat(t):
+        return t.reshape(-1, 1, 1)
+
+    angle, r1, r2, turn, c0, c1, c2 = _cell_tables(n, seed, 2 * 7, x).reshape(2, 7, n * n).unbind(1)
+    a = angle * (2 * math.pi)
+    t = (flat(rot) + turn * flat(rvar)) * (2 * math.pi)
+    grow = (r1 - r2) * flat(variation)
+    tints = [(1.0 - c * flat(cvar)).clamp(0.0, 1.0) for c in (c0, c1, c2)]
+    per_cell = torch.stack(torch.broadcast_tensors(
+        _fold(flat(dis) * torch.cos(a), n, flat(slack)), _fold(flat(dis) * torch.sin(a), n, flat(slack)),
+        torch.cos(t), torch.sin(t), (flat(width) + grow).abs().clamp_min(1e-3) / n,
+        (flat(height) + grow).abs().clamp_min(1e-3) / n, *tints), dim=1)
     u, v = _grid(x)
     i0 = torch.floor(u * n).long()
     j0 = torch.floor(v * n).long()
@@ -402,19 +414,13 @@ def make_it_tile_patch(source: torch.Tensor, *, octave: int = 3, mask_size=1.0, 
     for dj in range(-radius, radius + 1):
         for di in range(-radius, radius + 1):
             i, j = i0 + di, j0 + dj
-            cells = torch.remainder(j, n) * n + torch.remainder(i, n)
+            cells = (torch.remainder(j, n) * n + torch.remainder(i, n)).reshape(-1)
+            picked = per_cell[..., cells].unflatten(-1, (size, size))        # (B|1, 9, 2, H, W)
             near = (max(abs(di), abs(dj)) <= within).to(x.dtype)
-            for stamp in tables:
-                angle, r1, r2, turn, c0, c1, c2 = (t.reshape(-1)[cells] for t in stamp)
-                a = angle * (2 * math.pi)
-                cu = (i.to(x.dtype) + 0.5 + _fold(dis * torch.cos(a), n, slack)) / n
-                cv = (j.to(x.dtype) + 0.5 + _fold(dis * torch.sin(a), n, slack)) / n
-                lu, lv = u - cu, v - cv
-                t = (rot + turn * rvar) * (2 * math.pi)
-                ca, sa = torch.cos(t), torch.sin(t)
-                grow = (r1 - r2) * variation
-                w = (width + grow).abs().clamp_min(1e-3) / n
-                h = (height + grow).abs().clamp_min(1e-3) / n
+            for k in range(2):
+                du, dv, ca, sa, w, h, t0, t1, t2 = picked[:, :, k:k + 1].unbind(1)
+                lu = u - (i.to(x.dtype) + 0.5 + du) / n
+                lv = v - (j.to(x.dtype) + 0.5 + dv) / n
                 pu = (ca * lu + sa * lv) / w
                 pv = (ca * lv - sa * lu) / h
                 inside = ((pu.abs() <= 0.5) & (pv.abs() <= 0.5)).to(x.dtype)
@@ -424,7 +430,7 @@ def make_it_tile_patch(source: torch.Tensor, *, octave: int = 3, mask_size=1.0, 
                     qv = qv + warp * sample_wrap(slope_v, pu + 0.5, pv + 0.5)
                 mask = torch.exp(-PATCH_MASK_FALLOFF * (qu * qu + qv * qv))
                 alpha = ((mask - (1.0 - ms)) / (ms * (1.0 - mp)).clamp_min(1e-6)).clamp(0.0, 1.0) * inside * near
-                tint = torch.cat([1.0 - c * cvar for c in (c0, c1, c2)], dim=1).clamp(0.0, 1.0)
+                tint = torch.cat([t0, t1, t2], dim=1)
                 if gray:
                     tint = tint.mean(dim=1, keepdim=True)
                 elif x.shape[1] == 4:
