@@ -71,8 +71,8 @@ class BLENDER_MATCH_PG_settings(bpy.types.PropertyGroup):
     pack: BoolProperty(name="Pack Images", default=False,
                        description="Pack the maps into the .blend (always done while it is unsaved)")
     calibrate: BoolProperty(name="Match Photo Colour", default=True,
-                            description="Scale the fitted base colour to the photo's exposure and white balance "
-                                        "(off: the graph's own colours)")
+                            description="Scale the base colour to the photo's exposure and white balance, before and "
+                                        "after the fit (off: the graph's own colours)")
     match_scale: BoolProperty(name="Match Photo Scale", default=False,
                               description="Search the texture's scale in the photo, carried by the material's "
                                           "Mapping node (off: the graph's own scale)")

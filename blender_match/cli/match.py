@@ -27,8 +27,8 @@ def add_parser(sub):
                    help=f"without --graph: fit this many of the best-ranked graphs and keep the best fit "
                         f"(default {AUTO_CANDIDATES}; 3 is the MATch paper's)")
     p.add_argument("--no-calibration", dest="calibrate", action="store_false",
-                   help="keep the fitted base colour as the graph gives it (default: scale it to the photo's "
-                        "exposure and white balance)")
+                   help="keep the base colour as the graph gives it (default: scale it to the photo's "
+                        "exposure and white balance at the fit's start and after it)")
     p.add_argument("--zoom", type=zoom_argument, default=1.0, metavar="auto|Z",
                    help="texture periods across the photo (default 1: the graph's own scale; auto: searched "
                         "over 1, 2 and 4); the Blender material carries it as its Mapping scale")

@@ -89,8 +89,14 @@ class PhotoCalibration(ParameterSet):
         gain = self.gain().to(basecolor)
         if bool((gain == 1).all()) or basecolor.shape[1] < 3:
             return basecolor
-        rgb = linear_to_srgb(srgb_to_linear(basecolor[:, :3]) * gain.view(1, 3, 1, 1))
-        return torch.cat([rgb, basecolor[:, 3:]], dim=1)
+        return scaled_basecolor(basecolor, gain.view(1, 3))
+
+
+def scaled_basecolor(basecolor: torch.Tensor, gain: torch.Tensor) -> torch.Tensor:
+    """``basecolor`` (N, C >= 3, H, W) sRGB with its RGB scaled by ``gain`` (N or 1, 3) in linear
+    light (alpha kept)."""
+    rgb = linear_to_srgb(srgb_to_linear(basecolor[:, :3]) * gain[:, :, None, None])
+    return torch.cat([rgb, basecolor[:, 3:]], dim=1)
 
 
 def framed_maps(graph, size: int, seed: int = 0, theta: torch.Tensor | None = None,
@@ -158,28 +164,70 @@ def solve_lighting(graph, photo: torch.Tensor, seed: int = 0, camera: FlashCamer
     return replace(camera, falloff=falloff)
 
 
-def solve_gain(graph, photo: torch.Tensor, seed: int = 0, camera: FlashCamera = FlashCamera(),
-               steps: int = SOLVE_STEPS) -> torch.Tensor:
-    """Set ``graph.calibration``'s gain so that the graph's flash render has the photo's
-    (1, 3, S, S) level per channel (``unclipped_level``); returns the gain (3,). The render is
-    made at the photo's size: a relief's shading darkens as its detail is resolved, so a render at
-    another size has another level. A channel whose render is black keeps its gain."""
-    size = photo.shape[-1]
-    with torch.no_grad():
-        target = unclipped_level(photo.float())
-        gain = graph.calibration.gain().detach().clone()
-        target = target.to(gain)
-        previous = None
-        for _ in range(steps):
-            rendered = unclipped_level(render_maps(framed_maps(graph, size, seed), camera)[:1]).to(gain)
-            gain_next = torch.where(rendered > 1e-6, gain * target / rendered.clamp_min(1e-6), gain)
-            if previous is not None:  # the secant through the last two renders: exact for a*gain + b
-                slope = (rendered - previous[1]) / (gain - previous[0])
-                secant = gain + (target - rendered) / slope
-                usable = (gain - previous[0]).abs() > 1e-4
-                usable &= slope > 1e-6
-                gain_next = torch.where(usable, secant, gain_next)
-            previous = (gain, rendered)
-            gain = gain_next.clamp(*GAIN_RANGE)
-            graph.calibration.set_values(**{GAIN: gain})
+def with_gain(maps: dict[str, torch.Tensor], gain: torch.Tensor) -> dict[str, torch.Tensor]:
+    """``maps`` with the RGB of their ``basecolor`` scaled by ``gain`` (N or 1, 3) in linear light
+    (``scaled_basecolor``); unchanged without an RGB base colour."""
+    basecolor = maps.get("basecolor")
+    if basecolor is None or basecolor.shape[1] < 3:
+        return maps
+    return {**maps, "basecolor": scaled_basecolor(basecolor, gain)}
+
+
+def secant_gain(level, target: torch.Tensor, gain: torch.Tensor, steps: int = SOLVE_STEPS) -> torch.Tensor:
+    """The gain (N, 3) at which ``level(gain)`` (N, 3), the render's level under that gain, meets
+    ``target`` (N or 1, 3), from ``gain``: the first step applies the ratio, the next ones the
+    secant through the last two renders (exact for a * gain + b); within ``GAIN_RANGE``. A
+    channel whose render is black keeps its gain."""
+    previous = None
+    for _ in range(steps):
+        rendered = level(gain)
+        gain_next = torch.where(rendered > 1e-6, gain * target / rendered.clamp_min(1e-6), gain)
+        if previous is not None:
+            slope = (rendered - previous[1]) / (gain - previous[0])
+            secant = gain + (target - rendered) / slope
+            usable = (gain - previous[0]).abs() > 1e-4
+            usable &= slope > 1e-6
+            gain_next = torch.where(usable, secant, gain_next)
+        previous = (gain, rendered)
+        gain = gain_next.clamp(*GAIN_RANGE)
     return gain
+
+
+def solve_gain(graph, photo: torch.Tensor, seed: int = 0, camera: FlashCamera = FlashCamera(),
+               steps: int = SOLVE_STEPS, theta: torch.Tensor | None = None) -> torch.Tensor:
+    """Set ``graph.calibration``'s gain so that the graph's flash render (of the parameters
+    ``theta`` (P,) when given, else its own) has the photo's (1, 3, S, S) level per channel
+    (``unclipped_level``, ``secant_gain``); returns the gain (3,). The render is made at the
+    photo's size: a relief's shading darkens as its detail is resolved, so a render at another
+    size has another level."""
+    size = photo.shape[-1]
+    vector = None if theta is None else theta.reshape(1, -1).to(photo.device)
+
+    def level(gain: torch.Tensor) -> torch.Tensor:
+        graph.calibration.set_values(**{GAIN: gain[0]})
+        return unclipped_level(render_maps(framed_maps(graph, size, seed, vector), camera)[:1])[None].to(gain)
+
+    with torch.no_grad():
+        start = graph.calibration.gain().detach().clone()[None]
+        gain = secant_gain(level, unclipped_level(photo.float())[None].to(start), start, steps)[0]
+        graph.calibration.set_values(**{GAIN: gain})
+    return gain
+
+
+def proposal_gains(maps: dict[str, torch.Tensor], photo: torch.Tensor,
+                   camera: FlashCamera = FlashCamera(), steps: int = SOLVE_STEPS) -> torch.Tensor:
+    """The gain (N, 3) that gives each of a batch of maps (N, C, S, S) the photo's (1, 3, S, S)
+    level per channel, as ``solve_gain`` does for a graph, but on maps already evaluated (only the
+    flash render is repeated, the graph is not); ones where the maps have no RGB base colour."""
+
+    def level(gain: torch.Tensor) -> torch.Tensor:
+        image = render_maps(with_gain(maps, gain), camera)
+        return torch.stack([unclipped_level(image[i:i + 1]) for i in range(image.shape[0])])
+
+    basecolor = maps.get("basecolor")
+    if basecolor is None or basecolor.shape[1] < 3:
+        count = next(iter(maps.values())).shape[0]
+        return torch.ones(count, 3, device=photo.device)
+    with torch.no_grad():
+        start = torch.ones(basecolor.shape[0], 3, dtype=basecolor.dtype, device=basecolor.device)
+        return secant_gain(level, unclipped_level(photo.float())[None].to(start), start, steps)

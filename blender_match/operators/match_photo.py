@@ -44,8 +44,8 @@ class BLENDER_MATCH_OT_match_photo(JobRunner, bpy.types.Operator):
     pack: BoolProperty(name="Pack Images", default=False, options=_SKIP,
                        description="Pack the maps into the .blend (always done while it is unsaved)")
     calibrate: BoolProperty(name="Match Photo Colour", default=True, options=_SKIP,
-                            description="Scale the fitted base colour to the photo's exposure and white balance "
-                                        "(off: the graph's own colours)")
+                            description="Scale the base colour to the photo's exposure and white balance, before and "
+                                        "after the fit (off: the graph's own colours)")
     match_scale: BoolProperty(name="Match Photo Scale", default=False, options=_SKIP,
                               description="Search the texture's scale in the photo, carried by the material's "
                                           "Mapping node (off: the graph's own scale)")

@@ -69,20 +69,20 @@ def photo_loss(target: torch.Tensor, device) -> TargetLoss:
 
 
 def fit_named_graph(graph: MaterialGraph, name: str | None, target: torch.Tensor, schedule: Schedule, seed: int,
-                    device, zoom: float | None = 1.0, lighting: bool = True, progress=None,
-                    cancel=None) -> tuple[FitResult, str, torch.Tensor, FlashCamera]:
+                    device, zoom: float | None = 1.0, lighting: bool = True, calibrate: bool = True,
+                    progress=None, cancel=None) -> tuple[FitResult, str, torch.Tensor, FlashCamera]:
     """Fit ``graph`` (the graph called ``name``) to the photo tensor ``target`` from the start the
     product chooses (default, bank or predicted parameters: ``choose_start``), framed at ``zoom``
-    (None: searched from that start) and, when ``lighting``, under the photo's flash falloff
-    solved at that start (``selection.frame_start``): (FitResult, the start's name, the start's
-    parameter vector, the camera of the fit). The graph is moved to ``device``; its parameters
-    are left unchanged, its zoom is set."""
+    (None: searched from that start), when ``lighting`` under the photo's flash falloff and when
+    ``calibrate`` with the base colour gain, both solved at that start (``selection.frame_start``):
+    (FitResult, the start's name, the start's parameter vector, the camera of the fit). The graph
+    is moved to ``device``; its parameters are left unchanged, its zoom and gain are set."""
     graph.to(device)
     loss = photo_loss(target, device)  # choose_start shares it
     theta0, start = choose_start(graph, name, loss, schedule, seed)
     if theta0 is None:
         theta0 = graph.get_vector()
-    loss.camera = frame_start(graph, loss, theta0, schedule, seed, zoom, lighting)
+    loss.camera = frame_start(graph, loss, theta0, schedule, seed, zoom, lighting, calibrate)
     result = fit(graph, loss, schedule, seed=seed, theta0=theta0, progress=progress, cancel=cancel)
     return result, start, theta0.detach().cpu(), loss.camera
 
@@ -109,7 +109,8 @@ def _fit_named(job: JobProgress, target: torch.Tensor, options: MatchOptions, sc
                                "iterations": schedule.iterations})
 
     result, start, _, camera = fit_named_graph(graph, options.graph, target, schedule, options.seed, target.device,
-                                               zoom=options.zoom, lighting=options.lighting, progress=on_step,
+                                               zoom=options.zoom, lighting=options.lighting,
+                                               calibrate=options.calibrate, progress=on_step,
                                                cancel=job.cancel)
     report = fit_report(graph, result, schedule, photo_name, options.quality, start)
     graph.set_vector(result.theta)
@@ -134,7 +135,7 @@ def _fit_auto(job: JobProgress, target: torch.Tensor, options: MatchOptions, sch
     job.stage(FITTING, graph=ranking[0]["graph"], graph_index=1, graph_count=min(k, len(ranking)))
     loss = photo_loss(target, target.device)
     best, fits = select_and_fit(loss, ranking, k, schedule, seed=options.seed, materials=materials,
-                                zoom=options.zoom, lighting=options.lighting,
+                                zoom=options.zoom, lighting=options.lighting, calibrate=options.calibrate,
                                 progress=lambda event: _fitting_progress(job, event), cancel=job.cancel)
     graph = best.material
     report = fit_report(graph, best.fitted, schedule, photo_name, options.quality, best.start)
@@ -142,8 +143,8 @@ def _fit_auto(job: JobProgress, target: torch.Tensor, options: MatchOptions, sch
         check_outputs(list(graph.outputs), MATCH_FILES)
     report["iterations"] = sum(f.iterations for f in fits)  # every candidate's, not only the kept one's
     report["fit"]["budget_iterations"] = round(schedule.iterations * budget_factor(len(fits)))
-    report["ranking"] = [{"graph": e["graph"], "distance": round(e["distance"], 6), "start": e["start"]}
-                         for e in ranking]
+    report["ranking"] = [{"graph": e["graph"], "distance": round(e["distance"], 6), "start": e["start"],
+                          "gain": e["gain"]} for e in ranking]
     report["fitted"] = [f.summary() for f in fits]
     return graph, best.graph, report, loss.camera
 

@@ -23,7 +23,8 @@ class MatchOptions:
     ``.sbs`` path (None: automatic selection). ``iterations`` overrides the quality preset's
     iteration count (tests and scripted drafts). ``candidates``: how many of the best-ranked graphs
     automatic selection fits, keeping the best final loss (3: the paper's). ``calibrate``: solve the
-    photo's exposure and white balance as a gain on the fitted base colour (``diffmat.calibration``).
+    photo's exposure and white balance as a gain on the base colour, at the fit's start and after
+    it (``diffmat.calibration``).
     ``zoom``: texture periods across the photo, fixed for the fit (1, the default: the graph's
     authored scale); None searches it (``diffmat.zoom_search``; not the default: on the 33
     development photos it helped as many fits as it hurt, docs/benchmarks.md). ``lighting``: fit

@@ -21,7 +21,10 @@ Before its first round each candidate is framed at the photo's scale and light: 
 searched from its start (``diffmat.zoom_search``) unless the caller fixes it, then the falloff of
 the photo's flash over the frame is solved against the start's render
 (``calibration.solve_lighting``), so that the fit need not bend the material to imitate a
-phone's beam pattern and vignetting. Each candidate fits under its own camera.
+phone's beam pattern and vignetting, and the gain on its base colour that gives the start's
+render the photo's exposure and white balance (``calibration.solve_gain``), so that the fit need
+not spend the graph's colour parameters on them (the ranking judged it with that gain). Each
+candidate fits under its own camera and keeps its own gain.
 """
 from __future__ import annotations
 
@@ -31,7 +34,7 @@ from dataclasses import dataclass, field, replace
 import torch
 
 from ..diffmat import MaterialGraph
-from ..diffmat.calibration import solve_lighting
+from ..diffmat.calibration import solve_gain, solve_lighting
 from ..diffmat.optim import FitResult, Schedule, TargetLoss, fit
 from ..diffmat.render import FlashCamera
 from ..diffmat.zoom_search import search_zoom
@@ -89,13 +92,15 @@ def probe_schedule(schedule: Schedule, iterations: int) -> Schedule:
 
 
 def frame_start(graph, loss: TargetLoss, theta: torch.Tensor, schedule: Schedule, seed: int = 0,
-                zoom: float | None = 1.0, lighting: bool = True) -> FlashCamera:
+                zoom: float | None = 1.0, lighting: bool = True, calibrate: bool = True) -> FlashCamera:
     """Set ``graph``'s zoom (``zoom`` when given, else the one ``search_zoom`` finds for the start
     ``theta`` at ``schedule``'s first stage) and return the camera to fit it under: ``loss``'s,
     with the photo's falloff solved at the start when ``lighting``. The falloff is solved before
     the search too, at the graph's current zoom, so that each zoom is judged under the photo's
     light (under the ideal flash a coarse start zoomed out can look closer to a vignetted photo
-    than the right scale does). ``loss.camera`` and the graph's parameters are left as they were."""
+    than the right scale does). When ``calibrate`` (and the graph has a base colour), its gain is
+    then solved for the start under that camera. ``loss.camera`` and the graph's parameters are
+    left as they were."""
     ideal = loss.camera
     if zoom is not None:
         graph.calibration.set_values(**{ZOOM: zoom})
@@ -106,17 +111,22 @@ def frame_start(graph, loss: TargetLoss, theta: torch.Tensor, schedule: Schedule
         search_zoom(graph, loss, theta, first.size, first.scales, seed)
         loss.camera = ideal
     graph.clear_cache()
-    return solve_lighting(graph, loss.photo, seed, ideal, theta) if lighting else ideal
+    camera = solve_lighting(graph, loss.photo, seed, ideal, theta) if lighting else ideal
+    if calibrate and "basecolor" in graph.outputs:
+        solve_gain(graph, loss.photo, seed, camera, theta=theta)
+        graph.clear_cache()
+    return camera
 
 
 def select_and_fit(loss: TargetLoss, ranking: list[dict], k: int, schedule: Schedule, *, seed: int = 0,
                    materials: dict | None = None, zoom: float | None = 1.0, lighting: bool = True,
-                   progress=None, cancel=None) -> tuple[Fitted, list[Fitted]]:
+                   calibrate: bool = True, progress=None, cancel=None) -> tuple[Fitted, list[Fitted]]:
     """Fit the ``k`` best of ``ranking`` (``rank_graphs``' entries) to the photo of ``loss`` under
     one shared budget of ``schedule`` (see the module docstring) and return ``(best, fitted)``:
     ``Fitted`` records, ``best.material`` with its fitted parameters set. ``materials``: the
     graphs ``rank_graphs`` loaded, by name (others are loaded). ``zoom``: every candidate's,
-    fixed (None: each searches its own); ``lighting``: solve each one's falloff (``frame_start``).
+    fixed (None: each searches its own); ``lighting``: solve each one's falloff, ``calibrate``: its
+    gain (``frame_start``).
     ``loss.camera`` is left at the kept candidate's camera. ``progress`` gets {"graph",
     "graph_index", "graph_count", "iteration", "iterations", "loss", "eta_seconds"};
     ``cancel()`` raises Cancelled."""
@@ -130,7 +140,7 @@ def select_and_fit(loss: TargetLoss, ranking: list[dict], k: int, schedule: Sche
     fits = [Fitted(e["graph"], load_material(e["graph"], device, materials), e["start"], e["distance"], e["nodes"],
                    e["params"]) for e in chosen]
     for f, e in zip(fits, chosen):
-        f.camera = frame_start(f.material, loss, e["theta"], schedule, seed, zoom, lighting)
+        f.camera = frame_start(f.material, loss, e["theta"], schedule, seed, zoom, lighting, calibrate)
 
     def run(f: Fitted, index: int, sched: Schedule, theta0) -> None:
         def on_step(event):

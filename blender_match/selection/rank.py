@@ -4,8 +4,13 @@
 ``SHORTLIST`` graphs whose bank samples come nearest the photo's compact descriptor, so that the
 cost below grows with the shortlist, not with the library. For each of them, a candidate parameter
 vector (the predictor's, the bank's nearest sample's, or both, keeping the better) is rendered at
-128 px and scored by the fit's own style loss (Gram descriptor at 128) against the photo; the
-graphs come best first, by that distance alone. Simplicity decides only the final choice among
+128 px and scored by the fit's own style loss (Gram descriptor at 128) against the photo, after
+the photo's exposure and white balance are given to it: the per-channel gain on its base colour
+that the match's own calibration would solve (``calibration.proposal_gains``), each stop of it
+costing a little (``correction_cost``). Without the gain a graph whose sampled colours happen to
+reach the photo's (a flat glossy paint, a galvanized sheet) beat the photo's own material in
+another colour, which the match would have re-tinted anyway; the graphs come best first, by
+that distance alone. Simplicity decides only the final choice among
 the fitted graphs (``selection.fit``): ordering near-ties by simplicity here pushed the true graph
 out of the top 3 on 2 of the 32 targets of ``bench selection`` (30/32 in the top 3 by distance,
 28/32 with the tie rule), while fitting one more candidate costs time, never the simpler answer
@@ -17,6 +22,7 @@ import math
 
 import torch
 
+from ..diffmat.calibration import proposal_gains, with_gain
 from ..diffmat.descriptor import TextureDescriptor, style_loss
 from ..diffmat.optim import resize_square
 from ..diffmat.render import render_maps
@@ -31,6 +37,14 @@ METHODS = ("predictor", "bank", "both")
 RANK_SIZE = 128
 TIE_TOLERANCE = 0.02
 SHORTLIST = 10  # graphs the selection index lets through to be rendered (see docs/benchmarks.md)
+# A proposal's distance is its style loss times exp(EXPOSURE_WEIGHT x |e| + TINT_WEIGHT x the mean
+# |c|), where its gain is 2^(e + c) per channel: e the stops of exposure (the mean over channels),
+# c each channel's stops of white balance around it. The photo's exposure and white balance are
+# forgiven, as the match's own calibration forgives them, but of two graphs that match the
+# structure alike the one that needs less of a correction comes first; a tint costs more than an
+# exposure, which a flash photo leaves unknown by stops (docs/benchmarks.md).
+EXPOSURE_WEIGHT = 0.1
+TINT_WEIGHT = 0.2
 NO_MODELS = ("automatic graph selection needs the selection models (parameter predictors or sample banks) "
              "and none were found in {where}; create them with `blender-match train --all`")
 
@@ -93,6 +107,14 @@ def propose_starts(name: str, graph, descriptor: torch.Tensor, method: str = "bo
     return out
 
 
+def correction_cost(gains: torch.Tensor) -> torch.Tensor:
+    """The log-distance cost (N,) of the base colour gains (N, 3) a ranking gives its proposals
+    (``EXPOSURE_WEIGHT``, ``TINT_WEIGHT``)."""
+    stops = gains.log2()
+    exposure = stops.mean(dim=1, keepdim=True)
+    return EXPOSURE_WEIGHT * exposure[:, 0].abs() + TINT_WEIGHT * (stops - exposure).abs().mean(dim=1)
+
+
 def check_photo(photo: torch.Tensor) -> torch.Tensor:
     """The photo as a float (1, 3, H, W) tensor in [0, 1] (OptionError for another shape)."""
     if photo.dim() == 3:
@@ -123,8 +145,9 @@ def rank_graphs(photo: torch.Tensor, method: str = "both", *, seed: int = 0, dev
                 graphs=None, shortlist: int | None = SHORTLIST, progress=None, cancel=None,
                 materials: dict | None = None) -> list[dict]:
     """The library graphs with a model that come nearest the photo, best first: {"graph",
-    "distance" (style loss at 128 px of the proposed parameters' render), "theta" (normalised
-    (P,)), "start" ("predicted" | "bank"), "nodes", "params"}. With banks (``method`` "bank" or
+    "distance" (style loss at 128 px of the proposed parameters' render under its "gain", times
+    the gain's ``correction_cost``), "theta" (normalised (P,)), "start" ("predicted" | "bank"),
+    "gain" (the base colour gain, 3 values), "nodes", "params"}. With banks (``method`` "bank" or
     "both"), only the ``shortlist`` graphs the selection index puts nearest (and any graph with
     a predictor but no bank) are rendered and returned; ``shortlist=None`` renders them all.
     ``photo``: (1, 3, H, W) sRGB in [0, 1] (moved to ``device`` once); ``graphs`` limits the
@@ -143,7 +166,8 @@ def rank_graphs(photo: torch.Tensor, method: str = "both", *, seed: int = 0, dev
     gram = TextureDescriptor(scales=(RANK_SIZE,), vgg=vgg)
     with torch.no_grad():
         descriptor = compact_descriptor(vgg, photo, DESCRIPTOR_SIZE)
-        target = gram(resize_square(photo, RANK_SIZE), (RANK_SIZE,))
+        small = resize_square(photo, RANK_SIZE)
+        target = gram(small, (RANK_SIZE,))
     bank_starts: dict[str, torch.Tensor] = {}
     if method != "predictor":
         banks = selection_index(names, directory)
@@ -161,13 +185,16 @@ def rank_graphs(photo: torch.Tensor, method: str = "both", *, seed: int = 0, dev
             continue
         thetas = torch.stack([t for _, t in proposals]).to(device)
         with torch.no_grad():
-            image = render_maps(graph(size=RANK_SIZE, seed=seed, theta=thetas)).clamp(0, 1)
-            if image.shape[0] != thetas.shape[0]:
-                image = image.expand(thetas.shape[0], -1, -1, -1)
-            losses = style_loss(gram(image, (RANK_SIZE,)), target).cpu()
+            maps = {u: m.expand(thetas.shape[0], -1, -1, -1)
+                    for u, m in graph(size=RANK_SIZE, seed=seed, theta=thetas).items()}
+            gains = proposal_gains(maps, small)
+            image = render_maps(with_gain(maps, gains)).clamp(0, 1)
+            losses = style_loss(gram(image, (RANK_SIZE,)), target)
+            losses = (losses * torch.exp(correction_cost(gains))).cpu()
         best = best_finite(losses)
         entry = library_entry(name)
         entries.append({"graph": name, "distance": float(losses[best]), "theta": proposals[best][1].cpu(),
-                        "start": proposals[best][0], "nodes": entry["nodes"], "params": entry["params_optimizable"]})
+                        "start": proposals[best][0], "gain": [round(float(g), 4) for g in gains[best]],
+                        "nodes": entry["nodes"], "params": entry["params_optimizable"]})
         graph.clear_cache()
     return sorted(entries, key=lambda e: e["distance"])

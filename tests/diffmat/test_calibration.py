@@ -9,7 +9,14 @@ import pytest
 import torch
 
 from blender_match.diffmat import DiffMatError, MaterialGraph
-from blender_match.diffmat.calibration import CLIP_LEVEL, solve_gain, solve_lighting, unclipped_level
+from blender_match.diffmat.calibration import (
+    CLIP_LEVEL,
+    proposal_gains,
+    solve_gain,
+    solve_lighting,
+    unclipped_level,
+    with_gain,
+)
 from blender_match.diffmat.params_file import graph_params, load_params, save_params
 from blender_match.diffmat.render import FlashCamera, linear_to_srgb, render_maps, srgb_to_linear
 from blender_match.vocabulary import CALIBRATION, GAIN
@@ -85,6 +92,27 @@ def test_solve_ignores_the_clipped_flash_highlight():
     assert float((target >= CLIP_LEVEL).any(dim=1).float().mean()) > 0.01
     gain = solve_gain(g, target, seed=3, camera=camera)
     assert torch.allclose(gain, KNOWN_GAIN, rtol=0.05), gain
+
+
+def test_proposal_gains_solve_each_of_a_batch_of_maps_as_solve_gain_does():
+    """Two proposals of the same material, one rendered twice as bright: each gets the gain that
+    brings it to the photo's level, the dim one's the product of the brighter one's and two."""
+    g = sample()
+    target = target_with_gain(g, KNOWN_GAIN)
+    with torch.no_grad():
+        maps = g(size=128, seed=3)
+        bright = with_gain(maps, torch.full((1, 3), 2.0))
+        batch = {u: torch.cat([maps[u], bright[u]]) for u in maps}
+    gains = proposal_gains(batch, target)
+    assert torch.allclose(gains[0], KNOWN_GAIN, rtol=0.02), gains
+    assert torch.allclose(gains[1] * 2, KNOWN_GAIN, rtol=0.03), gains
+    assert torch.allclose(gains[0], solve_gain(g, target, seed=3), rtol=1e-3)
+
+
+def test_with_gain_leaves_maps_without_a_colour_base_colour_alone():
+    maps = {"basecolor": torch.rand(2, 1, 8, 8), "roughness": torch.rand(2, 1, 8, 8)}
+    assert with_gain(maps, torch.full((2, 3), 2.0)) is maps
+    assert torch.equal(proposal_gains({"roughness": maps["roughness"]}, torch.rand(1, 3, 8, 8)), torch.ones(2, 3))
 
 
 KNOWN_FALLOFF = (0.3, -0.2, -0.8, -0.6, 0.1)

@@ -7,9 +7,12 @@ import pytest
 import torch
 
 from blender_match.diffmat.calibration import CLIP_LEVEL
+from blender_match.diffmat.descriptor import TextureDescriptor
+from blender_match.diffmat.optim import TargetLoss
 from blender_match.diffmat.render import FlashCamera, linear_to_srgb, render_maps, srgb_to_linear
 from blender_match.errors import OptionError
 from blender_match.library import builtin_names, library_names, load_library_graph
+from blender_match.pipeline import match_schedule
 from blender_match.selection import predictor
 from blender_match.selection.bank import (
     SampleSpace,
@@ -21,6 +24,7 @@ from blender_match.selection.bank import (
     render_images,
 )
 from blender_match.selection.descriptor import DESCRIPTOR_DIM, compact_descriptor, descriptor_distance, shared_vgg
+from blender_match.selection.fit import frame_start
 from blender_match.selection.index import selection_index
 from blender_match.selection.predictor import (
     ParamPredictor,
@@ -31,13 +35,17 @@ from blender_match.selection.predictor import (
     save_predictor,
 )
 from blender_match.selection.rank import (
+    EXPOSURE_WEIGHT,
     NO_MODELS,
     SHORTLIST,
+    TINT_WEIGHT,
     NoSelectionModels,
     available_models,
+    correction_cost,
     order_by_simplicity,
     rank_graphs,
 )
+from blender_match.vocabulary import GAIN
 
 
 @pytest.fixture(autouse=True)
@@ -154,13 +162,42 @@ def test_the_final_choice_prefers_the_simpler_graph_on_a_near_tie():
 def test_a_colour_cast_and_a_clipped_highlight_keep_the_true_graph_first(name):
     """A library graph's render under a flash twice too strong, with a warm white balance (linear
     gains 1.5, 1, 0.6): part of it clips, its colours are off, and the full library's ranking still
-    puts the graph first."""
+    puts the graph first, scoring it with a gain that warms its base colour back towards the cast."""
     graph = load_library_graph(name)
     with torch.no_grad():
         hot = render_maps(graph(size=256, seed=11), FlashCamera(power=1.6))[:1]
     target = linear_to_srgb(srgb_to_linear(hot) * torch.tensor([1.5, 1.0, 0.6]).view(1, 3, 1, 1))
     assert float((target >= CLIP_LEVEL).any(dim=1).float().mean()) > 0.1
-    assert rank_graphs(target)[0]["graph"] == name
+    first = rank_graphs(target)[0]
+    assert first["graph"] == name
+    assert first["gain"][0] > 1.2 * first["gain"][2], first["gain"]
+
+
+def test_a_tint_costs_the_ranking_more_than_an_exposure():
+    """The cost of a proposal's gain: none for none; a stop of exposure costs EXPOSURE_WEIGHT, a
+    tint of a stop either way around the same exposure TINT_WEIGHT x its mean stops."""
+    cost = correction_cost(torch.tensor([[1.0, 1.0, 1.0], [2.0, 2.0, 2.0], [0.5, 0.5, 0.5], [2.0, 1.0, 0.5]]))
+    expected = torch.tensor([0.0, EXPOSURE_WEIGHT, EXPOSURE_WEIGHT, TINT_WEIGHT * 2 / 3])
+    assert torch.allclose(cost, expected, atol=1e-6), cost
+    assert TINT_WEIGHT > EXPOSURE_WEIGHT > 0
+
+
+@pytest.mark.parametrize("calibrate", [True, False])
+def test_a_fit_starts_with_the_photos_exposure_and_white_balance(calibrate):
+    """``frame_start`` gives the graph, at its start, the base colour gain of a colour-cast photo of
+    the graph itself (a warm cast, half a stop darker), unless told not to; the parameters stay."""
+    graph = load_library_graph("plaster")
+    cast = torch.tensor([1.4, 0.7, 0.5])
+    graph.calibration.set_values(**{GAIN: cast})
+    with torch.no_grad():
+        photo = render_maps(graph(size=128, seed=3))[:1]
+    graph.calibration.set_values(**{GAIN: torch.ones(3)})
+    theta = graph.get_vector().clone()
+    loss = TargetLoss(photo, TextureDescriptor(vgg=shared_vgg("cpu")))
+    frame_start(graph, loss, theta, match_schedule("draft"), seed=3, zoom=1.0, lighting=False, calibrate=calibrate)
+    expected = cast if calibrate else torch.ones(3)
+    assert torch.allclose(graph.calibration.gain(), expected, rtol=0.03), graph.calibration.gain()
+    assert torch.equal(graph.get_vector(), theta)
 
 
 def test_missing_models_say_how_to_create_them(tmp_path):
@@ -229,7 +266,7 @@ def test_match_without_a_graph_selects_fits_and_reports(tmp_path):
     ranking = saved["ranking"]
     # the selection index lets the SHORTLIST graphs nearest the photo through to be rendered
     assert len(ranking) == SHORTLIST and set(e["graph"] for e in ranking) < set(library_names())
-    assert all(e["distance"] >= 0 for e in ranking)
+    assert all(e["distance"] >= 0 and len(e["gain"]) == 3 for e in ranking)
     distances = [e["distance"] for e in ranking]
     assert distances == sorted(distances)  # by distance alone: simplicity only picks among the fitted
     fitted = saved["fitted"]
