@@ -113,6 +113,14 @@ def framed_maps(graph, size: int, seed: int = 0, theta: torch.Tensor | None = No
     return {u: m.repeat(1, 1, reps, reps)[..., :size, :size] for u, m in maps.items()}
 
 
+def framed_render(graph, photo: torch.Tensor, seed: int = 0, camera: FlashCamera = FlashCamera(),
+                  theta: torch.Tensor | None = None) -> torch.Tensor:
+    """The flash render (1, 3, S, S) under ``camera`` of the graph's ``framed_maps`` at the size of
+    ``photo`` (1, 3, S, S), of the parameters ``theta`` (P,) when given, else its own."""
+    vector = None if theta is None else theta.reshape(1, -1).to(photo.device)
+    return render_maps(framed_maps(graph, photo.shape[-1], seed, vector), camera)[:1]
+
+
 def unclipped_level(image: torch.Tensor) -> torch.Tensor:
     """Per-channel level (3,) of an sRGB (1, 3, H, W) image: the mean linear radiance of the
     darker ``KEEP_DARKEST`` of the pixels with no channel at ``CLIP_LEVEL`` or above (of every
@@ -145,10 +153,8 @@ def solve_lighting(graph, photo: torch.Tensor, seed: int = 0, camera: FlashCamer
     squares with the falloff's smooth terms (added to the camera's own, which the render already
     has). The constant of that fit is the level, which the gain takes. The camera is returned
     unchanged when too few cells are usable."""
-    size = photo.shape[-1]
     with torch.no_grad():
-        vector = None if theta is None else theta.reshape(1, -1).to(photo.device)
-        render = render_maps(framed_maps(graph, size, seed, vector), camera)[:1]
+        render = framed_render(graph, photo, seed, camera, theta)
         (p_lum, p_clip), (r_lum, r_clip) = cell_levels(photo), cell_levels(render)
         usable = (p_clip <= 0.5) & (r_clip <= 0.5) & (p_lum > 1e-4) & (r_lum > 1e-4)
         if int(usable.sum()) < MIN_LIGHTING_CELLS:
@@ -164,13 +170,17 @@ def solve_lighting(graph, photo: torch.Tensor, seed: int = 0, camera: FlashCamer
     return replace(camera, falloff=falloff)
 
 
+def rgb_basecolor(maps: dict[str, torch.Tensor]) -> torch.Tensor | None:
+    """The maps' ``basecolor`` when it has RGB channels (a gain can scale it), else None."""
+    basecolor = maps.get("basecolor")
+    return basecolor if basecolor is not None and basecolor.shape[1] >= 3 else None
+
+
 def with_gain(maps: dict[str, torch.Tensor], gain: torch.Tensor) -> dict[str, torch.Tensor]:
     """``maps`` with the RGB of their ``basecolor`` scaled by ``gain`` (N or 1, 3) in linear light
     (``scaled_basecolor``); unchanged without an RGB base colour."""
-    basecolor = maps.get("basecolor")
-    if basecolor is None or basecolor.shape[1] < 3:
-        return maps
-    return {**maps, "basecolor": scaled_basecolor(basecolor, gain)}
+    basecolor = rgb_basecolor(maps)
+    return maps if basecolor is None else {**maps, "basecolor": scaled_basecolor(basecolor, gain)}
 
 
 def secant_gain(level, target: torch.Tensor, gain: torch.Tensor, steps: int = SOLVE_STEPS) -> torch.Tensor:
@@ -200,12 +210,10 @@ def solve_gain(graph, photo: torch.Tensor, seed: int = 0, camera: FlashCamera = 
     (``unclipped_level``, ``secant_gain``); returns the gain (3,). The render is made at the
     photo's size: a relief's shading darkens as its detail is resolved, so a render at another
     size has another level."""
-    size = photo.shape[-1]
-    vector = None if theta is None else theta.reshape(1, -1).to(photo.device)
 
     def level(gain: torch.Tensor) -> torch.Tensor:
         graph.calibration.set_values(**{GAIN: gain[0]})
-        return unclipped_level(render_maps(framed_maps(graph, size, seed, vector), camera)[:1])[None].to(gain)
+        return unclipped_level(framed_render(graph, photo, seed, camera, theta))[None].to(gain)
 
     with torch.no_grad():
         start = graph.calibration.gain().detach().clone()[None]
@@ -224,8 +232,8 @@ def proposal_gains(maps: dict[str, torch.Tensor], photo: torch.Tensor,
         image = render_maps(with_gain(maps, gain), camera)
         return torch.stack([unclipped_level(image[i:i + 1]) for i in range(image.shape[0])])
 
-    basecolor = maps.get("basecolor")
-    if basecolor is None or basecolor.shape[1] < 3:
+    basecolor = rgb_basecolor(maps)
+    if basecolor is None:
         count = next(iter(maps.values())).shape[0]
         return torch.ones(count, 3, device=photo.device)
     with torch.no_grad():

@@ -1,5 +1,6 @@
 """Declarations of the library normal / height / relief nodes (see functional/library_normal.py)."""
 from .. import functional as F
+from ..functional.library_normal import AO_MODELS
 from .registry import register
 from .spec import Input, NodeSpec, Param
 
@@ -61,7 +62,7 @@ register(NodeSpec(
             Param("equalizer", (0.0, 0.0, 0.0), -0.5, 0.5, size=3,
                   doc="low, mid, high bands (0 leaves a band as it is)"),
             Param("levels", (0.0, 0.5, 1.0), size=3, doc="final Levels: in low, mid, high"),
-            Param("model", 0, kind="enum", choices=(0, 1),
+            Param("model", 0, kind="enum", choices=tuple(AO_MODELS),
                   doc="0 Substance's (the MATch reference's), 1 three blurs (ours, our library's)")),
     doc="Ambient Occlusion (blur-based, the older node)."))
 
