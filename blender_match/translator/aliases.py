@@ -37,9 +37,10 @@ TILE_LAYOUT_ALIASES: dict[str, str | tuple[str, ...]] = {
 }
 TILE_GENERATOR_ALIASES: dict[str, str | tuple[str, ...]] = {
     **TILE_LAYOUT_ALIASES, "pattern_type": "pattern", "luminance_variation_contrast": "luminance_random",
-    "pattern_size_random": "scale_random", "randommask": "mask_random",
+    "pattern_size_random": "scale_random", "randommask": "mask_random", "position_offset_random": "offset_random",
     # the older Tile Generator's: free rotation and its random spread in degrees (``convert_value``)
     "free_rotation": "rotation", "free_rotation_random": "rotation_random", "scalevariation": "scale_random",
+    "scalevariation_seed": "scale_random_seed",
     "luminancebyscalevariation": "luminance_by_scale",
 }
 # the current Scratches Generator's "Spline" identifiers (its documentation; the Normal version
@@ -58,9 +59,12 @@ PARAM_ALIASES: dict[str, dict[str, str | tuple[str, ...]]] = {
     "tile_sampler": TILE_LAYOUT_ALIASES,
     "shape": {"size": "scale", "rotation": "rotation_45", "variation": "pattern_specific"},
     "brick_generator": {"bricks": ("x_amount", "y_amount"), "gap": "interstice"},
+    "parquet_1": {"luminance_variation": "luminance_random"},
     **{name: SCRATCHES_ALIASES for name in SCRATCHES},
     "mesh_1": {"mesh_width": "width"},
     "stripes": {"stripes": "number"},
+    # the older Anisotropic Noise's name of its Y Amount By Resolution switch
+    "anisotropic_noise": {"y_by_resolution": "y_amount_by_resolution"},
     # legacy noises: "Distance" is the zoom / scale slider (cells: 10-30 in production files)
     "perlin_noise_zoom": {"distance": "scale"},
     "plasma": {"distance": "scale"},

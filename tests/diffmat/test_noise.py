@@ -124,6 +124,18 @@ def test_anisotropic_noise_streaks_and_smoothness():
     assert not torch.equal(sharp[..., 7, :], sharp[..., 8, :])
 
 
+def test_anisotropic_noise_y_amount_by_resolution_is_one_row_a_pixel_at_512():
+    """Substance's Y Amount By Resolution: one lattice row a pixel (production brushed metals use it
+    with X Amount 1 for hairlines); ours is the 512-row lattice at every output size."""
+    by = F.noise_anisotropic(x_amount=1, y_amount=8, smoothness=0.0, y_amount_by_resolution=True, size=512, seed=0)
+    assert torch.equal(by, F.noise_anisotropic(x_amount=1, y_amount=512, smoothness=0.0, size=512, seed=0))
+    coarse = F.noise_anisotropic(x_amount=1, y_amount=8, smoothness=0.0, size=512, seed=0)
+    changes = (by[..., 1:, 0] != by[..., :-1, 0]).float().mean()
+    assert changes > 0.95 and (coarse[..., 1:, 0] != coarse[..., :-1, 0]).float().mean() < 0.02
+    small = F.noise_anisotropic(x_amount=1, y_amount=8, y_amount_by_resolution=True, size=128, seed=0)
+    assert small.std() < 0.8 * by.std()          # four rows a pixel at 128: averaged, not resampled
+
+
 def test_white_noises_statistics_and_lattice():
     w = F.noise_white(size=512, seed=0)
     assert abs(w.mean().item() - 0.5) < 0.01 and abs(w.std().item() - 0.2887) < 0.01
@@ -142,6 +154,8 @@ def test_grunge_balance_and_contrast():
     flat = F.noise_grunge_map_012(contrast=0.1, size=64, seed=0)
     assert bright.mean() > base.mean() + 0.1
     assert flat.std() < 0.7 * base.std()
+    inverted = F.noise_grunge_map_012(balance=0.8, invert=True, size=64, seed=0)
+    torch.testing.assert_close(inverted, 1.0 - bright)   # Invert: 1 - the toned map
 
 
 def test_nodes_have_substance_parameters():

@@ -74,6 +74,22 @@ def test_tile_generator_random_row_offsets():
     assert len(set(shifts)) > 1   # by different amounts
 
 
+def test_tile_generator_older_seeds_draw_their_own_row_shifts_and_scales():
+    """The older Tile Generator's Offset Random Seed and Scale Variation Seed: 0 keeps the layout's
+    own random values; another seed changes only the random row shifts or the random scales."""
+    kw = dict(x_amount=4, y_amount=4, pattern=1, interstice=(0.2, 0.2))
+    shifted = _render("tile_generator", offset_random=0.5, **kw)
+    assert torch.equal(shifted, _render("tile_generator", offset_random=0.5, offset_random_seed=0, **kw))
+    assert not torch.equal(shifted, _render("tile_generator", offset_random=0.5, offset_random_seed=377, **kw))
+    assert torch.equal(_render("tile_generator", **kw), _render("tile_generator", offset_random_seed=377, **kw))
+    scaled = _render("tile_generator", scale_random=0.6, **kw)
+    reseeded = _render("tile_generator", scale_random=0.6, scale_random_seed=5, **kw)
+    assert not torch.equal(scaled, reseeded)
+    assert abs(float(scaled.mean() - reseeded.mean())) < 0.15   # the same spread of scales, drawn anew
+    assert torch.equal(_render("tile_generator", luminance_random=0.6, **kw),
+                       _render("tile_generator", luminance_random=0.6, scale_random_seed=5, **kw))
+
+
 def test_tile_generator_luminance_by_number_fades_the_tiles_in_order():
     """Luminance By Number: tile k of N (counted down each column, then across) at (k + 1) / N."""
     out = _render("tile_generator", x_amount=4, y_amount=4, pattern=1, scale=0.5, luminance_by_number=True)[0, 0]
@@ -384,6 +400,41 @@ def test_brick_generator_rows_are_offset():
     r0, r1 = out[row_h // 2], out[row_h + row_h // 2]
     torch.testing.assert_close(r1, torch.roll(r0, 128 // 8, dims=0))
     assert r0.min() < 0.05 and r0.max() > 0.95
+
+
+def test_brick_generator_height_puts_each_brick_at_min_or_max():
+    """Height (min, max, balance, variance): the bricks stand at min or max, the share at max
+    (1 + balance) / 2; variance lowers each by a random factor; the default changes nothing."""
+    kw = dict(size=128, luminance_random=0.0)
+    flat = _render("brick_generator", **kw)[0, 0]
+    assert torch.equal(flat, _render("brick_generator", height=(1.0, 1.0, 0.0, 0.0), **kw)[0, 0])
+    centres = lambda img: img[8::16, 8::16]          # noqa: E731 (the 4 x 8 bricks' centres at offset 0)
+    kw_grid = dict(kw, offset=0.0)
+    base = centres(_render("brick_generator", **kw_grid)[0, 0])
+    for balance, level in ((1.0, 0.7), (-1.0, 0.2)):
+        lifted = centres(_render("brick_generator", height=(0.2, 0.7, balance, 0.0), **kw_grid)[0, 0])
+        assert torch.allclose(lifted, level * base)
+    mixed = centres(_render("brick_generator", height=(0.2, 0.7, 0.0, 0.0), **kw_grid)[0, 0]) / base
+    levels = set(round(v, 4) for v in mixed.flatten().tolist())
+    assert levels == {0.2, 0.7}
+    spread = centres(_render("brick_generator", height=(1.0, 1.0, 0.0, 0.8), **kw_grid)[0, 0]) / base
+    assert spread.min() > 0.2 - 1e-4 and spread.max() <= 1.0 + 1e-5 and spread.std() > 0.1
+
+
+def test_brick_generator_slope_ramps_across_each_brick():
+    """Slope (x, y, balance, variance): balance 1 ramps every brick along x (rising rightwards for
+    x > 0, down to 1 - |x| at its low end), -1 along y (rising upwards); variance turns some round."""
+    kw = dict(size=128, luminance_random=0.0, offset=0.0, interstice=(0.0, 0.0), bevel=0.0)
+    flat = _render("brick_generator", **kw)[0, 0]
+    along_x = _render("brick_generator", slope=(0.5, 0.0, 1.0, 0.0), **kw)[0, 0] / flat.clamp_min(1e-6)
+    row = along_x[8, :32]                              # one brick of 32 px across
+    assert row[0] < 0.55 and row[-1] > 0.98 and bool((row[1:] >= row[:-1] - 1e-6).all())
+    along_y = _render("brick_generator", slope=(0.0, 0.5, -1.0, 0.0), **kw)[0, 0] / flat.clamp_min(1e-6)
+    col = along_y[:16, 4]                              # one brick of 16 px down: rises upwards
+    assert col[0] > 0.95 and col[-1] < 0.55
+    turned = _render("brick_generator", slope=(0.5, 0.0, 1.0, 1.0), **kw)[0, 0] / flat.clamp_min(1e-6)
+    rising = (turned[8::16, 31::32] > turned[8::16, 0::32]).float().mean()
+    assert 0.2 < rising < 0.8                          # about half of them turned round
 
 
 def test_parquet_weave_mesh_splatter_scratches_creased_basic_looks():

@@ -61,6 +61,14 @@ def test_normalisation_and_resolution_rules():
     assert aliases.convert_value("tile_generator", "rotation_random", "Free_Rotation_Random", 720.0) == 0.5
     assert aliases.convert_value("tile_generator", "rotation_random", "Free_Rotation_Random", 36.0) == 0.05
     assert aliases.resolve_param(tile, "LuminanceByScaleVariation") == [("luminance_by_scale", None)]
+    assert aliases.resolve_param(tile, "ScaleVariation_Seed") == [("scale_random_seed", None)]
+    assert aliases.resolve_param(tile, "scale_random_seed") == [("scale_random_seed", None)]
+    assert aliases.resolve_param(tile, "offset_random_seed") == [("offset_random_seed", None)]
+    assert aliases.resolve_param(tile, "position_offset_random") == [("offset_random", None)]
+    assert aliases.resolve_param(get_spec("anisotropic_noise"), "y_by_resolution") == \
+        [("y_amount_by_resolution", None)]
+    assert aliases.resolve_param(get_spec("parquet_1"), "luminance_variation") == [("luminance_random", None)]
+    assert aliases.resolve_param(get_spec("brick_generator"), "Height") == [("height", None)]
     assert aliases.resolve_param(tile, "Vertical_Offset") == [("vertical_offset", None)]
     assert aliases.resolve_param(tile, "Global_Offset") == [("global_offset", None)]
     assert aliases.resolve_param(tile, "reverse_rendering_order") == [("reverse_rendering_order", None)]
@@ -130,6 +138,31 @@ def test_vector_parameter_spread_over_components(tmp_path):
     assert (vals["x_amount"], vals["y_amount"]) == (3, 9) and math.isclose(vals["bevel"], 0.1, abs_tol=1e-5)
     assert t.report["params_dropped"] == 0
     assert t.graph(size=SIZE)["height"].shape == (1, 1, SIZE, SIZE)
+
+
+def test_older_library_parameters_that_were_dropped_now_reach_their_nodes(tmp_path):
+    """Read from public production files and dropped before: the Brick Generator's Height and
+    Slope, the older Tile Generator's own seeds and Position Offset Random, the older Anisotropic
+    Noise's Y By Resolution, the Grunge Maps' Invert."""
+    t = _one_instance(tmp_path, "brick_generator", [W.param("Height", "constantValueFloat4", "0.81 0.71 0.38 0.16"),
+                                                    W.param("Slope", "constantValueFloat4", "0.26 0.17 0.69 -0.68")],
+                      out_ident="Bricks_Generator")
+    vals, _ = _values(t, "brick_generator")
+    assert vals["height"] == pytest.approx([0.81, 0.71, 0.38, 0.16], abs=1e-5)
+    assert vals["slope"] == pytest.approx([0.26, 0.17, 0.69, -0.68], abs=1e-5)
+    cases = [("tile_generator", "TileGenerator", [W.param("offset_random_seed", "constantValueInt32", 377),
+                                                  W.param("ScaleVariation_Seed", "constantValueInt32", 12),
+                                                  W.param("position_offset_random", "constantValueFloat1", 0.5)],
+              {"offset_random_seed": 377, "scale_random_seed": 12, "offset_random": 0.5}),
+             ("anisotropic_noise", "Anisotropic_Noise", [W.param("y_by_resolution", "constantValueBool", 1)],
+              {"y_amount_by_resolution": True}),
+             ("grunge_map_013", "output", [W.param("invert", "constantValueBool", 1)], {"invert": True})]
+    for graph_name, out_ident, params, expected in cases:
+        t = _one_instance(tmp_path, graph_name, params, out_ident=out_ident)
+        assert t.report["params_dropped"] == 0, (graph_name, t.report["params_dropped_names"])
+        vals, _ = _values(t, graph_name)
+        assert {k: vals[k] for k in expected} == pytest.approx(expected), graph_name
+        assert torch.isfinite(t.graph(size=SIZE)["height"]).all()
 
 
 def test_exact_identifier_wins_over_alias(tmp_path):

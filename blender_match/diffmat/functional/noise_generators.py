@@ -235,14 +235,22 @@ def noise_fractal_sum_base(*, roughness=0.5, min_level: int = 1, max_level: int 
     return squash(z, 0.45)
 
 
+# the rows of an Anisotropic Noise whose Y Amount follows the resolution: one a pixel at 512 px,
+# White Noise's texture-space lattice, so that the maps stay the same at every output size
+RESOLUTION_ROWS = 512
+
+
 def noise_anisotropic(*, x_amount: int = 8, y_amount: int = 128, smoothness=0.5, interpolation: bool = True,
-                      rotate: bool = False, size: int = 512, seed: int = 0, device=None,
-                      dtype=torch.float32) -> torch.Tensor:
+                      rotate: bool = False, y_amount_by_resolution: bool = False, size: int = 512, seed: int = 0,
+                      device=None, dtype=torch.float32) -> torch.Tensor:
     """Anisotropic Noise: random values on an x_amount x y_amount lattice, interpolated smoothly
     along x (long horizontal streaks when y_amount > x_amount). ``smoothness`` blends the hard-edged
     version (each streak a constant band down y) with the smoothly interpolated one;
     ``interpolation`` off uses linear instead of cubic interpolation; ``rotate`` turns the result a
-    quarter turn (vertical streaks)."""
+    quarter turn (vertical streaks). ``y_amount_by_resolution`` replaces ``y_amount`` by
+    ``RESOLUTION_ROWS`` rows (Substance: one row a pixel of the output; brushed-metal hairlines)."""
+    if y_amount_by_resolution:
+        y_amount = RESOLUTION_ROWS
     interp = "cubic" if interpolation else "linear"
     smooth = lattice_noise((x_amount, y_amount), size, seed=seed, key="anisotropic", kind="value", interp=interp,
                            device=device, dtype=dtype)
@@ -349,15 +357,20 @@ NOISE_RECIPES: dict[str, tuple[Recipe, tuple, tuple]] = {
 
 
 def make_recipe_generator(name: str, recipe: Recipe, extra: tuple = ()):
-    """A named functional for a recipe row: keyword parameters scale, disorder (+ ``extra``)."""
+    """A named functional for a recipe row: keyword parameters scale, disorder (+ ``extra``:
+    roughness, balance and contrast, invert)."""
     has_rough = "roughness" in extra
     has_tone = "balance" in extra
 
+    has_invert = "invert" in extra
+
     def generator(*, scale=1.0, disorder=0.0, roughness=recipe.roughness, balance=0.5, contrast=0.5,
-                  size: int = 512, seed: int = 0, device=None, dtype=torch.float32) -> torch.Tensor:
-        return noise_recipe(recipe, scale=scale, disorder=disorder, roughness=roughness if has_rough else None,
-                            balance=balance if has_tone else 0.5, contrast=contrast if has_tone else 0.5,
-                            name=name, size=size, seed=seed, device=device, dtype=dtype)
+                  invert: bool = False, size: int = 512, seed: int = 0, device=None,
+                  dtype=torch.float32) -> torch.Tensor:
+        out = noise_recipe(recipe, scale=scale, disorder=disorder, roughness=roughness if has_rough else None,
+                           balance=balance if has_tone else 0.5, contrast=contrast if has_tone else 0.5,
+                           name=name, size=size, seed=seed, device=device, dtype=dtype)
+        return 1.0 - out if invert and has_invert else out
 
     generator.__name__ = generator.__qualname__ = f"noise_{name}"
     generator.__doc__ = f"Substance's {name}: {recipe}. See ``Recipe`` and ``noise_recipe``."

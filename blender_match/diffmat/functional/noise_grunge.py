@@ -3,8 +3,9 @@
 a base fractal (value / gradient lattice, plain / ridged / billowed, isotropic or streaked),
 an optional detail layer (fine speckle, Gaussian spots, cellular pits or cellular seams), an
 optional domain warp and a tone curve. Dirt maps take ``scale`` and ``disorder``; grunge maps add
-``balance`` (brightness offset of the tone curve, 0.5 = the map's own look) and ``contrast``
-(steepness, 0.5 = the map's own look).
+``balance`` (brightness offset of the tone curve, 0.5 = the map's own look), ``contrast``
+(steepness, 0.5 = the map's own look) and ``invert`` (1 - the map: production files switch it on for
+Grunge Maps 006, 007, 010, 012 and 013).
 
 Substance's documentation calls the Dirt family "grainy" (Dirt 1, 2, 4 and 5 are each "a variation
 of the grainy Dirt noises"): no dirt here is warped or ridged into swirls. The rest of each recipe
@@ -54,7 +55,7 @@ GRUNGE_RECIPES: dict[str, tuple[Recipe, tuple, tuple]] = {
     "dirt_6": (Recipe(cells=4, octaves=5, roughness=0.5, mode="ridged", detail="edges", detail_cells=8,
                       detail_weight=0.5, gain=1.3), _DIRT, ()),
 }
-_TONE = ("balance", "contrast")
+_TONE = ("balance", "contrast", "invert")
 _GRUNGE = (1, 16, 1)
 GRUNGE_RECIPES.update({
     "grunge_map_001": (Recipe(kind="value", cells=4, octaves=8, roughness=0.7, detail="speckle", detail_cells=16,

@@ -415,6 +415,8 @@ def _combine(acc, h, vals, add: bool):
 MIN_CELL_PIXELS = 8
 # the seed offset of the per-row random shifts (``tile_field(offset_random=)``), apart from the tiles'
 ROW_SEED = 7919
+# the seed offset of the random scales that an own Scale Random Seed draws (``tile_field``)
+SCALE_SEED = 6007
 # how overlapping shapes combine (``tile_field(blending=)``): the Tile Generator's Blending Mode
 BLENDINGS = ("max", "add", "add_sub")
 # supersampling never draws more than this many pixels across (memory: at 2048 px every cell of up
@@ -434,6 +436,20 @@ def tile_supersampling(size: int, nx: int, ny: int) -> int:
     return k
 
 
+def _cell_randoms(seed: int, cells: int, scale_random_seed: int, device, dtype) -> torch.Tensor:
+    """The (N_RND, cells) random values of ``tile_field``'s cells; an own ``scale_random_seed``
+    (not 0) redraws the scales' row from a stream of its own."""
+    rnd = lattice_random(seed, N_RND, cells, device, dtype)
+    if scale_random_seed:
+        rnd[RND_SCALE] = lattice_random(seed + SCALE_SEED + int(scale_random_seed), 1, cells, device, dtype)[0]
+    return rnd
+
+
+def _row_randoms(seed: int, rows: int, offset_random_seed: int, device, dtype) -> torch.Tensor:
+    """The (rows,) random values of ``tile_field``'s row shifts, from their own stream."""
+    return lattice_random(seed + ROW_SEED + int(offset_random_seed), 1, rows, device, dtype)[0]
+
+
 def tile_field(size: int, nx: int, ny: int, *, seed: int, profile: Callable, scale=1.0, size_xy=(1.0, 1.0),
                interstice=(0.0, 0.0), offset=0.0, position_random=0.0, scale_random=0.0, rotation=0.0,
                rotation_random=0.0, luminance_random=0.0, mask_random=0.0, pattern_specific=0.5,
@@ -441,7 +457,7 @@ def tile_field(size: int, nx: int, ny: int, *, seed: int, profile: Callable, sca
                own_cell: bool = False, blending: str = "max", background=0.0, opacity=1.0,
                offset_every_row: bool = False, luminance_by_number: bool = False, numbered_across: bool = False,
                offset_random=0.0, global_offset=(0.0, 0.0), reverse_order: bool = False,
-               luminance_by_scale: bool = False,
+               luminance_by_scale: bool = False, offset_random_seed: int = 0, scale_random_seed: int = 0,
                device=None, dtype=torch.float32):
     """A grid of ``nx`` × ``ny`` cells, one shape per cell; every alternate row is shifted right by
     ``offset`` cells. The shape fills its cell at scale 1 less the ``interstice`` gap (fraction of
@@ -465,7 +481,10 @@ def tile_field(size: int, nx: int, ny: int, *, seed: int, profile: Callable, sca
     random shift of up to ``offset_random`` × (k + 1) / ny of the image. ``luminance_by_number``:
     tile k of the N, counted down each column and then across (``numbered_across``: along each
     row, then down), has its luminance scaled by (k + 1) / N. ``luminance_by_scale``: each tile's
-    luminance scaled by its random scale factor.
+    luminance scaled by its random scale factor. ``offset_random_seed`` / ``scale_random_seed`` (the
+    older Tile Generator's own seeds of its random row shifts and tile scales): a non-zero value
+    draws those values from a stream of their own (0: the layout's), so that two nodes of one seed
+    can differ there.
 
     ``softness`` (local units, 1 = the half size) widens hard edges beyond the one-pixel
     anti-aliasing. ``profile(x, y, w, spec, ex, ey)`` gives the shape's height at local coordinates
@@ -490,7 +509,7 @@ def tile_field(size: int, nx: int, ny: int, *, seed: int, profile: Callable, sca
     ucoord = _pixel_axis(size, device, dtype)
     if blending not in BLENDINGS:
         raise DiffMatError(f"tile blending {blending!r}: expected one of {', '.join(BLENDINGS)}")
-    rnd = lattice_random(seed, N_RND, nx * ny, device, dtype)
+    rnd = _cell_randoms(seed, nx * ny, scale_random_seed, device, dtype)
     background = param4d(background, ref)
     lum_offset = background if blending != "max" else None
     scale = param4d(scale, ref)
@@ -533,7 +552,7 @@ def tile_field(size: int, nx: int, ny: int, *, seed: int, profile: Callable, sca
     X = (ucoord.view(1, 1, 1, size) - gx) * nx   # (B|1, 1, 1, W)
     Y = (ucoord.view(1, 1, size, 1) - gy) * ny   # (B|1, 1, H, 1)
     offset_random = param4d(offset_random, ref)
-    row_random = lattice_random(seed + ROW_SEED, 1, ny, device, dtype)[0] if _active(offset_random) else None
+    row_random = _row_randoms(seed, ny, offset_random_seed, device, dtype) if _active(offset_random) else None
     row0 = torch.floor(Y + 0.5 - 0.5 * my)
     pix = 1.0 / size
     cellv = _cell_values(nx, ny, rnd, pix, hx, hy, softness, position_random, scale_random, rotation,

@@ -25,8 +25,8 @@ from .pattern_shapes import (
     tile_field,
 )
 
-__all__ = ["tile_pattern", "tile_pattern_color", "tile_sampler_pattern", "brick_pattern", "checker_pattern",
-           "parquet_pattern", "weave_pattern", "plain_weave", "mesh_pattern", "circular_splatter"]
+__all__ = ["tile_pattern", "tile_pattern_color", "tile_sampler_pattern", "brick_pattern", "brick_relief",
+           "checker_pattern", "parquet_pattern", "weave_pattern", "plain_weave", "mesh_pattern", "circular_splatter"]
 
 # Tile Generator "Pattern" list: 0 is the image input, then the shape library in Substance's order.
 TILE_PATTERNS = ("image",) + SHAPES[:15]
@@ -116,6 +116,8 @@ def _tile_generator(where: str, image, args: dict):
         field["offset_random"] = args["offset_random"]
         field["reverse_order"] = bool(args["reverse_rendering_order"])
         field["luminance_by_scale"] = bool(args["luminance_by_scale"])
+        for seed_name in ("offset_random_seed", "scale_random_seed"):
+            field[seed_name] = check_int(args[seed_name], f"{where}.{seed_name}", 0, 2 ** 31 - 1)
     grid_mask = GridMask(checker=bool(args.get("checker_mask")), columns=bool(args.get("horizontal_mask")),
                          rows=bool(args.get("vertical_mask")), invert=bool(args.get("invert_mask")))
     transposed = bool(args.get("vertical_offset"))
@@ -136,8 +138,9 @@ def tile_pattern(pattern_input_1=None, *, x_amount: int = 10, y_amount: int = 10
                  vertical_mask: bool = False, invert_mask: bool = False, blending_mode: int = 0,
                  global_opacity=1.0, luminance_by_number: bool = False, offset_random=0.0,
                  vertical_offset: bool = False, global_offset=(0.0, 0.0), reverse_rendering_order: bool = False,
-                 luminance_by_scale: bool = False, background_level=0.0, size: int = 512, seed: int = 0,
-                 device=None, dtype=torch.float32) -> torch.Tensor:
+                 luminance_by_scale: bool = False, background_level=0.0, offset_random_seed: int = 0,
+                 scale_random_seed: int = 0, size: int = 512, seed: int = 0, device=None,
+                 dtype=torch.float32) -> torch.Tensor:
     """Tile Generator: an ``x_amount`` × ``y_amount`` grid of one pattern (``TILE_PATTERNS``;
     0 reads ``pattern_input_1``), row k shifted by k × ``offset`` cells ("offsets the entire
     pattern incrementally over every consecutive row", Substance's documentation), with per-tile
@@ -147,7 +150,8 @@ def tile_pattern(pattern_input_1=None, *, x_amount: int = 10, y_amount: int = 10
     ``blending_mode`` (``TILE_BLENDINGS``: Add by default, as Substance's) over the
     ``background_level``, the tiles scaled by ``global_opacity``; ``luminance_by_number`` fades
     the tiles' luminance over their order, ``luminance_by_scale`` over their random scale;
-    ``offset_random`` shifts each row at random; ``vertical_offset`` offsets columns instead of
+    ``offset_random`` shifts each row at random (``offset_random_seed`` and ``scale_random_seed``: the
+    older node's own seeds, see ``tile_field``); ``vertical_offset`` offsets columns instead of
     rows; ``global_offset`` moves the whole layout; ``reverse_rendering_order`` gives the tiles
     their random values in the reverse order (``tile_field``)."""
     out, _ = _tile_generator("tile_generator", pattern_input_1, locals())
@@ -163,7 +167,8 @@ def tile_pattern_color(pattern_input_1=None, *, x_amount: int = 10, y_amount: in
                        offset_random=0.0, vertical_offset: bool = False, global_offset=(0.0, 0.0),
                        reverse_rendering_order: bool = False, luminance_by_scale: bool = False, color_random=1.0,
                        pattern_color=(1.0, 1.0, 1.0, 1.0), background_color=(0.0, 0.0, 0.0, 1.0),
-                       size: int = 512, seed: int = 0, device=None, dtype=torch.float32) -> torch.Tensor:
+                       offset_random_seed: int = 0, scale_random_seed: int = 0, size: int = 512, seed: int = 0,
+                       device=None, dtype=torch.float32) -> torch.Tensor:
     """Tile Generator Color: the tile layout of ``tile_pattern``; each tile takes
     ``pattern_color`` × a random colour (mixed in by ``color_random``) × its height, over
     ``background_color``; overlapping tiles combine as ``tile_pattern``'s (Add Sub as Add: the
@@ -186,13 +191,22 @@ def tile_sampler_pattern(pattern_input=None, *, x_amount: int = 16, y_amount: in
     return out
 
 
+# Brick Generator's Height and Slope when they change nothing: (min, max, balance, variance) and
+# (x, y, balance, variance)
+FLAT_BRICKS = (1.0, 1.0, 0.0, 0.0)
+NO_SLOPE = (0.0, 0.0, 0.0, 0.0)
+# the seed offset of the bricks' own random values (heights and slopes), apart from the tiles'
+BRICK_SEED = 104729
+
+
 def brick_pattern(*, x_amount: int = 4, y_amount: int = 8, offset=0.5, interstice=(0.04, 0.08), bevel=0.1,
-                  luminance_random=0.3, mask_random=0.0, size: int = 512, seed: int = 0, device=None,
-                  dtype=torch.float32) -> torch.Tensor:
+                  luminance_random=0.3, mask_random=0.0, height=FLAT_BRICKS, slope=NO_SLOPE, size: int = 512,
+                  seed: int = 0, device=None, dtype=torch.float32) -> torch.Tensor:
     """Brick Generator: ``x_amount`` × ``y_amount`` bricks (cells of 1/x_amount by 1/y_amount, so
     4 × 8 gives 2:1 bricks), alternate rows offset by ``offset``, separated by ``interstice`` (gap
     as a fraction of the brick's width/height), bevelled over ``bevel`` × the brick height, with
-    random luminance per brick."""
+    random luminance per brick; each brick then scaled by its ``height`` and ``slope``
+    (``brick_relief``)."""
     nx = check_int(x_amount, "brick_generator.x_amount", 1, 256)
     ny = check_int(y_amount, "brick_generator.y_amount", 1, 256)
     ref = ref_tensor(device, dtype)
@@ -207,7 +221,45 @@ def brick_pattern(*, x_amount: int = 4, y_amount: int = 8, offset=0.5, interstic
     out, _ = tile_field(size, nx, ny, seed=seed, profile=brick, interstice=interstice, offset=offset,
                         luminance_random=luminance_random, mask_random=mask_random, device=device,
                         dtype=dtype)
+    height, slope = param4d(height, ref), param4d(slope, ref)
+    if bool((height != torch.tensor(FLAT_BRICKS, dtype=dtype, device=ref.device).view(1, 4, 1, 1)).any()) \
+            or bool((slope != 0).any()):
+        out = out * brick_relief(nx, ny, param4d(offset, ref), height, slope, size, seed)
     return out
+
+
+def brick_relief(nx: int, ny: int, offset: torch.Tensor, height: torch.Tensor, slope: torch.Tensor, size: int,
+                 seed: int) -> torch.Tensor:
+    """The factor (B|1, 1, size, size) by which the Brick Generator's Height and Slope scale each
+    brick of ``brick_pattern``'s layout (facts: the MATch reference implementation, whose
+    parameters these are; the formulas here are ours). ``height`` (min, max, balance, variance):
+    a brick stands at ``min`` or ``max``, the share at ``max`` (1 + balance) / 2, then lowered
+    towards 0 by a random factor as far as |variance| says; heights below 0 read as 0. ``slope``
+    (x, y, balance, variance): a ramp across the brick, 1 at its high end and 1 - |x| at its low
+    end (rising rightwards for x > 0) or, down the brick, 1 - |y| (rising upwards for y > 0);
+    balance 1 gives every brick the x ramp, -1 the y ramp, 0 a random mix of the two per brick;
+    a share |variance| / 2 of the bricks have their ramps turned round."""
+    rnd = lattice_random(seed + BRICK_SEED, 4, nx * ny, offset.device, offset.dtype)
+    u, v = pixel_grid(size, offset.device, offset.dtype)
+    row = torch.floor(v * ny)
+    xs = u * nx - offset * torch.remainder(row, 2.0)
+    col = torch.remainder(torch.floor(xs), float(nx))
+    fx, fy = xs - torch.floor(xs), v * ny - row
+    cell = (row * nx + col).long()
+    pick, spread, mix, turn = (r[cell] for r in rnd)
+
+    h_min, h_max, h_balance, h_variance = height.split(1, dim=1)
+    level = torch.where(pick < (1.0 + h_balance) / 2.0, h_max, h_min).clamp_min(0.0)
+    level = level * (1.0 - h_variance.abs() * (1.0 - spread))
+
+    s_x, s_y, s_balance, s_variance = slope.split(1, dim=1)
+    turned = turn < s_variance.abs() / 2.0
+    along_x = torch.where(turned != (s_x < 0), 1.0 - fx, fx)
+    along_y = torch.where(turned != (s_y < 0), fy, 1.0 - fy)
+    ramp_x = 1.0 - (1.0 - along_x) * s_x.abs()
+    ramp_y = 1.0 - (1.0 - along_y) * s_y.abs()
+    weight = torch.lerp(s_balance.clamp(0.0, 1.0), (s_balance + 1.0).clamp(0.0, 1.0), 1.0 - mix)
+    return level * torch.lerp(ramp_y, ramp_x, weight)
 
 
 def _square_wave(t: torch.Tensor, pw: float) -> torch.Tensor:

@@ -25,6 +25,8 @@ def recipe_params(recipe, scale_range, extra) -> tuple:
         params.append(Param("balance", 0.5, 0.0, 1.0, doc="brightness offset of the tone curve"))
     if "contrast" in extra:
         params.append(Param("contrast", 0.5, 0.0, 1.0, doc="steepness of the tone curve"))
+    if "invert" in extra:
+        params.append(Param("invert", False, kind="bool", doc="1 - the map"))
     return tuple(params)
 
 
@@ -55,5 +57,7 @@ register(NodeSpec(
             Param("y_amount", 128, 1, 256, kind="int", doc="lattice cells down"),
             Param("smoothness", 0.5, 0.0, 1.0, doc="hard bands (0) to smooth interpolation down (1)"),
             Param("interpolation", True, kind="bool", doc="cubic (on) or linear (off) interpolation"),
-            Param("rotate", False, kind="bool", doc="a quarter turn: vertical streaks")),
+            Param("rotate", False, kind="bool", doc="a quarter turn: vertical streaks"),
+            Param("y_amount_by_resolution", False, kind="bool",
+                  doc="y_amount replaced by one row a pixel at 512 px (RESOLUTION_ROWS)")),
     context=CONTEXT, doc="Anisotropic Noise: streaks from a stretched random lattice."))

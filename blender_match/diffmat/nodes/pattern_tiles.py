@@ -41,7 +41,11 @@ def _layout(pattern=8, scale=1.0):
               doc="moves the whole layout (x, y), fractions of the image"),
         Param("reverse_rendering_order", False, kind="bool",
               doc="the tiles take their random values in the reverse order"),
-        Param("luminance_by_scale", False, kind="bool", doc="each tile's luminance times its random scale"))
+        Param("luminance_by_scale", False, kind="bool", doc="each tile's luminance times its random scale"),
+        Param("offset_random_seed", 0, 0, 2 ** 31 - 1, kind="int", optimizable=False,
+              doc="the older node's seed of its random row shifts (0: the layout's own)"),
+        Param("scale_random_seed", 0, 0, 2 ** 31 - 1, kind="int", optimizable=False,
+              doc="the older node's seed of its random scales (0: the layout's own)"))
 
 
 register(NodeSpec(
@@ -87,7 +91,11 @@ register(NodeSpec(
             Param("interstice", (0.04, 0.08), 0.0, 0.5, size=2, doc="gap, fraction of the brick (x, y)"),
             Param("bevel", 0.1, 0.0, 0.5, doc="fraction of the brick height"),
             Param("luminance_random", 0.3, 0.0, 1.0),
-            Param("mask_random", 0.0, 0.0, 1.0)),
+            Param("mask_random", 0.0, 0.0, 1.0),
+            Param("height", F.pattern_tiles.FLAT_BRICKS, -1.0, 1.0, size=4, optimizable=False,
+                  doc="(min, max, balance, variance): each brick at min or max, lowered at random"),
+            Param("slope", F.pattern_tiles.NO_SLOPE, -1.0, 1.0, size=4, optimizable=False,
+                  doc="(x, y, balance, variance): a ramp across each brick (brick_relief)")),
     context=GEN,
     doc="Brick Generator: offset rows of bevelled bricks."))
 
