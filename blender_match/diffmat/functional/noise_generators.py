@@ -361,7 +361,6 @@ def make_recipe_generator(name: str, recipe: Recipe, extra: tuple = ()):
     roughness, balance and contrast, invert)."""
     has_rough = "roughness" in extra
     has_tone = "balance" in extra
-
     has_invert = "invert" in extra
 
     def generator(*, scale=1.0, disorder=0.0, roughness=recipe.roughness, balance=0.5, contrast=0.5,
