@@ -112,7 +112,7 @@ def build() -> SbsGraph:
 FAMILY = "leather"
 
 SAMPLE_RANGES = {
-    "exposed.leather_color": ((0.02, 0.02, 0.02), (0.60, 0.42, 0.45)),
+    "exposed.leather_color": ((0.02, 0.02, 0.02), (0.85, 0.80, 0.78)),
     "exposed.grain_depth": (0.25, 0.85),
     "exposed.pores": (0.1, 0.8),
     "exposed.mottling": (0.1, 0.8),

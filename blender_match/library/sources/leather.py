@@ -115,7 +115,7 @@ def build() -> SbsGraph:
 FAMILY = "leather"
 
 SAMPLE_RANGES = {
-    "exposed.leather_color": ((0.10, 0.05, 0.03), (0.55, 0.32, 0.20)),
+    "exposed.leather_color": ((0.03, 0.03, 0.03), (0.85, 0.80, 0.75)),
     "exposed.grain_depth": (0.2, 0.9),
     "exposed.wrinkles": (0.0, 0.9),
     "exposed.wear": (0.0, 0.8),

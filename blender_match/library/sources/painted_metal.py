@@ -95,7 +95,7 @@ def build() -> SbsGraph:
 FAMILY = "metal"
 
 SAMPLE_RANGES = {
-    "exposed.paint_color": ([0.03, 0.03, 0.03], [0.75, 0.7, 0.65]),
+    "exposed.paint_color": ([0.02, 0.02, 0.02], [0.9, 0.9, 0.9]),
     "exposed.paint_roughness": (0.25, 0.7),
     "exposed.metal_color": ([0.5, 0.5, 0.5], [0.75, 0.75, 0.77]),
     "exposed.metal_roughness": (0.15, 0.55),

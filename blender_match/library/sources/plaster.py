@@ -99,7 +99,7 @@ def build() -> SbsGraph:
 FAMILY = "plaster"
 
 SAMPLE_RANGES = {
-    "exposed.color": ([0.50, 0.42, 0.30], [0.72, 0.62, 0.48]),
+    "exposed.color": ([0.36, 0.33, 0.28], [0.92, 0.90, 0.87]),
     "exposed.bump_scale": (0.6, 1.8),
     "exposed.bumps": (0.15, 0.95),
     "exposed.trowel": (0.0, 1.0),

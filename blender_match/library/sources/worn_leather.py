@@ -145,7 +145,7 @@ def build() -> SbsGraph:
 FAMILY = "leather"
 
 SAMPLE_RANGES = {
-    "exposed.leather_color": ((0.04, 0.03, 0.02), (0.60, 0.42, 0.40)),
+    "exposed.leather_color": ((0.04, 0.03, 0.02), (0.85, 0.80, 0.75)),
     "exposed.wear": (0.1, 0.85),
     "exposed.crazing": (0.1, 0.9),
     "exposed.creases": (0.1, 0.9),
