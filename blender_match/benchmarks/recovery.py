@@ -4,8 +4,9 @@ The paper's own test. A target is a library graph at a sampled variant (``sample
 k >= ``TARGET_K0``: beyond every bank and training index) rendered at ``size`` px with noise seed
 ``TRUTH_SEED``, which no fit uses. Each preset (draft, balanced, best) fits it as ``blender-match
 match --graph NAME`` does (``pipeline.fit_named_graph``: from the start the product chooses, with
-graph seed ``FIT_SEED``). The start and the fitted parameters are scored at ``size`` by three
-measures that no fit minimises:
+graph seed ``FIT_SEED``; then ``pipeline.finish_calibration``, the base colour's gain solved again
+for the fitted material, as every match ends). The start (with the gain solved for it) and the
+fitted material are scored at ``size`` by three measures that no fit minimises:
 
 - ``patch``: ``image_distances.patch_distance`` between the target photo and the flash render with
   the fit's seed (what the user sees);
@@ -37,7 +38,7 @@ import torch
 from ..diffmat.calibration import framed_maps
 from ..diffmat.render import render_maps
 from ..library import apply_params, builtin_names, load_library_graph, sample_params
-from ..pipeline import fit_named_graph, match_schedule, resolve_device
+from ..pipeline import finish_calibration, fit_named_graph, match_schedule, resolve_device
 from ..safe_files import write_atomic
 from ..vocabulary import QUALITY_NAMES
 from .accuracy_metrics import NOVEL_LIGHT, image_rmse, make_truth, map_rmse
@@ -83,10 +84,12 @@ def recover(name: str, k: int, size: int, presets, device, iterations: int | Non
     for preset in presets:
         fresh = load_library_graph(name)
         started = time.perf_counter()
-        result, start, theta0, _ = fit_named_graph(fresh, name, photo, match_schedule(preset, iterations), FIT_SEED,
-                                                    device, zoom=zoom, lighting=lighting)
+        result, start, theta0, camera = fit_named_graph(fresh, name, photo, match_schedule(preset, iterations),
+                                                         FIT_SEED, device, zoom=zoom, lighting=lighting)
         seconds = time.perf_counter() - started
-        before = measures(fresh, theta0, photo, truth, size, TRUTH_SEED)
+        before = measures(fresh, theta0, photo, truth, size, TRUTH_SEED)  # with the gain solved at the start
+        fresh.set_vector(result.theta)
+        finish_calibration(fresh, photo, FIT_SEED, camera, lighting)  # as every match ends
         after = measures(fresh, result.theta, photo, truth, size, TRUTH_SEED)
         row = {"target": f"{name}/{k}", "graph": name, "preset": preset, "start": start, "seconds": round(seconds, 2),
                "iterations": result.iterations, "loss_initial": result.loss_initial, "loss_final": result.loss_final}

@@ -87,6 +87,23 @@ def fit_named_graph(graph: MaterialGraph, name: str | None, target: torch.Tensor
     return result, start, theta0.detach().cpu(), loss.camera
 
 
+def finish_calibration(graph: MaterialGraph, target: torch.Tensor, seed: int, camera: FlashCamera,
+                       lighting: bool = True, calibrate: bool = True) -> tuple[FlashCamera, dict]:
+    """What every match does once the fitted parameters are set on ``graph``: the photo's flash
+    falloff solved again for the fitted material (when ``lighting``), then the gain that gives its
+    base colour the photo's exposure and white balance under that light (when ``calibrate``; the
+    gain solved at the start no longer fits a material whose colour and relief the fit moved).
+    Returns the camera and report.json's ``calibration`` entries (zoom, falloff, gain)."""
+    entries: dict = {ZOOM: graph.calibration.periods()}
+    if lighting:
+        camera = solve_lighting(graph, target, seed, camera)
+        entries[FALLOFF] = [round(v, 4) for v in camera.falloff]
+    if calibrate and "basecolor" in graph.outputs:
+        gain = solve_gain(graph, target, seed=seed, camera=camera)
+        entries[GAIN] = [round(float(v), 4) for v in gain]
+    return camera, entries
+
+
 def _fitting_progress(job: JobProgress, event: dict) -> None:
     """One fitting step as a job-wide progress event: ``event`` holds the graph, its index and
     count, the iteration of all ``iterations``, the loss and the time left."""
@@ -152,10 +169,8 @@ def _fit_auto(job: JobProgress, target: torch.Tensor, options: MatchOptions, sch
 def _fit(job: JobProgress, photo, options: MatchOptions, schedule: Schedule, device: torch.device,
          check_outputs: OutputsCheck | None) -> Match:
     """Read the photo and fit (named or automatic; either frames the graph at the photo's scale
-    and light), then solve the photo's flash falloff again for the fitted material (unless
-    ``options.lighting`` is off) and calibrate its base colour to the photo's exposure and white
-    balance under it (unless ``options.calibrate`` is off): what ``fit_photo`` and
-    ``match_photo`` share. The photo is moved to the device once, here."""
+    and light), then ``finish_calibration`` (as ``options.lighting`` and ``options.calibrate``
+    say): what ``fit_photo`` and ``match_photo`` share. The photo is moved to the device once, here."""
     job.stage(READING_PHOTO)
     if isinstance(photo, torch.Tensor):
         target, photo_name = check_photo(photo), "photo"
@@ -164,13 +179,8 @@ def _fit(job: JobProgress, photo, options: MatchOptions, schedule: Schedule, dev
     target = target.to(device)
     branch = _fit_named if options.graph else _fit_auto
     graph, source, report, camera = branch(job, target, options, schedule, photo_name, check_outputs)
-    report["calibration"] = {ZOOM: graph.calibration.periods()}
-    if options.lighting:
-        camera = solve_lighting(graph, target, options.seed, camera)
-        report["calibration"][FALLOFF] = [round(v, 4) for v in camera.falloff]
-    if options.calibrate and "basecolor" in graph.outputs:
-        gain = solve_gain(graph, target, seed=options.seed, camera=camera)
-        report["calibration"][GAIN] = [round(float(v), 4) for v in gain]
+    camera, report["calibration"] = finish_calibration(graph, target, options.seed, camera, options.lighting,
+                                                       options.calibrate)
     return Match(graph, source, target, device, report, camera)
 
 

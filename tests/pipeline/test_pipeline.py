@@ -11,13 +11,13 @@ import torch
 from PIL import Image
 
 from blender_match.cli import main
-from blender_match.diffmat.calibration import framed_maps, unclipped_level
+from blender_match.diffmat.calibration import framed_maps, solve_gain, unclipped_level
 from blender_match.diffmat.render import FlashCamera, linear_to_srgb, render_maps, srgb_to_linear
 from blender_match.diffmat.zoom_search import ZOOMS
 from blender_match.errors import BlenderMatchError, Cancelled
 from blender_match.image_files import write_png
 from blender_match.photo import load_photo
-from blender_match.pipeline import MatchOptions, fit_photo, match_photo, render_params
+from blender_match.pipeline import MatchOptions, finish_calibration, fit_photo, load_graph, match_photo, render_params
 from blender_match.safe_files import FileWriteError
 
 TINY = dict(graph="plaster", size=64, quality="draft", iterations=2)
@@ -94,6 +94,29 @@ def test_the_fitted_base_colour_takes_the_photos_exposure_and_white_balance(phot
     assert torch.equal(plain.graph.calibration.gain(), torch.ones(3))
     ideal = fit_photo(shifted, MatchOptions(**TINY, lighting=False))
     assert "falloff" not in ideal.report["calibration"] and ideal.camera == FlashCamera()
+
+
+def test_finish_calibration_gives_a_moved_material_the_photos_level_again(photo):
+    """The gain solved for a start no longer fits once the fit has moved the colour: every match (and
+    ``bench recovery``, which scores what a match delivers) solves it again for the fitted material."""
+    image = load_photo(photo, 64)
+    graph = load_graph("plaster")
+    solve_gain(graph, image, seed=0)
+    started = graph.calibration.gain().clone()
+    theta = graph.get_vector()
+    colour = [i for i, name in enumerate(graph.param_names()) if name.startswith("exposed.color")]
+    theta[colour] *= 0.5  # a darker plaster than the start's (within the gain's three stops)
+    graph.set_vector(theta)
+    camera, entries = finish_calibration(graph, image, 0, FlashCamera())
+    with torch.no_grad():
+        rendered = render_maps(framed_maps(graph, 64, seed=0), camera)[:1]
+    assert torch.allclose(unclipped_level(rendered), unclipped_level(image), rtol=0.03)
+    assert (graph.calibration.gain() > started * 2).all()
+    assert entries["basecolor_gain"] == pytest.approx(graph.calibration.gain().tolist(), abs=1e-4)
+    assert set(entries) == {"zoom", "falloff", "basecolor_gain"}
+    gain = graph.calibration.gain().clone()
+    assert set(finish_calibration(graph, image, 0, FlashCamera(), lighting=False, calibrate=False)[1]) == {"zoom"}
+    assert torch.equal(graph.calibration.gain(), gain)
 
 
 def test_a_fixed_zoom_is_reported_carried_and_checked(photo, tmp_path):
