@@ -20,8 +20,11 @@ fitted material are scored at ``size`` by three measures that no fit minimises:
 Each is divided by the same measure for the truth's parameters re-rendered with the fit's seed,
 so 1.0 is "as good as the truth itself": for ``maps`` and ``novel``, an error as large as the one
 the noise seed alone makes. Per preset the table gives the median ratio of each measure, the share
-of targets that end closer than they started by each, and the median seconds (start choice and
-fit; the 2K maps that ``match`` writes afterwards are not part of it). ``--quick``: one target for
+of targets that end closer than they started by each, the share whose fit ends *past the truth*
+(its own loss below ``loss_truth``, the fit's loss of the truth's parameters with the fit's seed:
+the descriptor can no longer tell the target from itself under another noise seed, so what the fit
+gains beyond it is the target's particular noise), and the median seconds (start choice and fit;
+the 2K maps that ``match`` writes afterwards are not part of it). ``--quick``: one target for
 each of ``QUICK_GRAPHS`` (the full run: every library graph; ``--graphs`` picks others), every
 preset (``--quality draft,balanced``: those).
 """
@@ -38,7 +41,7 @@ import torch
 from ..diffmat.calibration import framed_maps
 from ..diffmat.render import render_maps
 from ..library import apply_params, builtin_names, load_library_graph, sample_params
-from ..pipeline import finish_calibration, fit_named_graph, match_schedule, resolve_device
+from ..pipeline import finish_calibration, fit_named_graph, match_schedule, photo_loss, resolve_device
 from ..safe_files import write_atomic
 from ..vocabulary import QUALITY_NAMES
 from .accuracy_metrics import NOVEL_LIGHT, image_rmse, make_truth, map_rmse
@@ -70,6 +73,17 @@ def measures(graph, theta: torch.Tensor, photo: torch.Tensor, truth, size: int, 
             "novel": image_rmse(novel, truth.novel), **{f"rmse_{name}": value for name, value in rmse.items()}}
 
 
+def truth_loss(graph, truth_theta: torch.Tensor, photo: torch.Tensor, schedule, device) -> float:
+    """The fit's loss (``schedule``'s last stage, as ``FitResult.loss_final`` is measured) of the
+    truth's parameters rendered with the fit's seed under the ideal flash the target was made with:
+    the descriptor's distance from the target to itself under another noise seed."""
+    last = schedule.stages[-1]
+    with torch.no_grad():
+        value = photo_loss(photo, device)(graph, truth_theta.reshape(1, -1).to(device), last.size, last.scales,
+                                          FIT_SEED, last.crop)
+    return float(value[0])
+
+
 def recover(name: str, k: int, size: int, presets, device, iterations: int | None = None, zoom: float | None = 1.0,
             lighting: bool = True) -> list[dict]:
     """One target (graph ``name``, variant ``k``) fitted by each preset (rescaled to ``iterations``
@@ -83,16 +97,19 @@ def recover(name: str, k: int, size: int, presets, device, iterations: int | Non
     rows = []
     for preset in presets:
         fresh = load_library_graph(name)
+        schedule = match_schedule(preset, iterations)
         started = time.perf_counter()
-        result, start, theta0, camera = fit_named_graph(fresh, name, photo, match_schedule(preset, iterations),
-                                                         FIT_SEED, device, zoom=zoom, lighting=lighting)
+        result, start, theta0, camera = fit_named_graph(fresh, name, photo, schedule, FIT_SEED, device, zoom=zoom,
+                                                         lighting=lighting)
         seconds = time.perf_counter() - started
         before = measures(fresh, theta0, photo, truth, size, TRUTH_SEED)  # with the gain solved at the start
         fresh.set_vector(result.theta)
         finish_calibration(fresh, photo, FIT_SEED, camera, lighting)  # as every match ends
         after = measures(fresh, result.theta, photo, truth, size, TRUTH_SEED)
         row = {"target": f"{name}/{k}", "graph": name, "preset": preset, "start": start, "seconds": round(seconds, 2),
-               "iterations": result.iterations, "loss_initial": result.loss_initial, "loss_final": result.loss_final}
+               "iterations": result.iterations, "loss_initial": result.loss_initial, "loss_final": result.loss_final,
+               "loss_truth": truth_loss(graph, truth_theta, photo, schedule, device)}
+        row["past_truth"] = row["loss_final"] < row["loss_truth"]
         row |= {f"{key}_start": value for key, value in before.items() if key.startswith("rmse_")}
         row |= {f"{key}_final": value for key, value in after.items() if key.startswith("rmse_")}
         for m in MEASURES:
@@ -118,6 +135,7 @@ def summarise(rows: list[dict], presets) -> list[dict]:
             row[f"{m}_ratio"] = round(statistics.median(r[f"{m}_ratio"] for r in mine), 3)
         for m in MEASURES:
             row[f"{m}_closer"] = f"{sum(r[f'{m}_closer'] for r in mine) / len(mine):.0%}"
+        row["past_truth"] = f"{sum(r['past_truth'] for r in mine) / len(mine):.0%}"
         row["start_patch_ratio"] = round(statistics.median(r["patch_start_ratio"] for r in mine), 3)
         row["seconds"] = round(statistics.median(r["seconds"] for r in mine), 1)
         out.append(row)
@@ -126,12 +144,14 @@ def summarise(rows: list[dict], presets) -> list[dict]:
 
 def markdown(summary: list[dict], rows: list[dict], config: dict) -> str:
     per_target = ["target", "preset", "start", "seconds", "patch_start_ratio", "patch_ratio", "maps_ratio",
-                  "novel_ratio"]
+                  "novel_ratio", "loss_final", "loss_truth"]
+    legend = (f"size {config['size']} px, truth seed {TRUTH_SEED}, fit seed {FIT_SEED}, device {config['device']}, "
+              f"torch threads {config['threads']}; ratios: the measure over the truth's own (1.0 = as good as the "
+              "truth re-rendered with the fit's seed); closer: share of targets that end closer to the truth than "
+              "their start; past_truth: share whose fit's loss ends below loss_truth, the loss of the truth's own "
+              "parameters with the fit's seed")
     return "\n\n".join([
-        "# bench recovery", f"size {config['size']} px, truth seed {TRUTH_SEED}, fit seed {FIT_SEED}, "
-        f"device {config['device']}, torch threads {config['threads']}; ratios: the measure over the truth's "
-        "own (1.0 = as good as the truth re-rendered with the fit's seed); closer: share of targets that "
-        "end closer to the truth than their start", table(summary, list(summary[0])) if summary else "(no rows)",
+        "# bench recovery", legend, table(summary, list(summary[0])) if summary else "(no rows)",
         "## Per target", table(rows, per_target) if rows else "(no rows)"]) + "\n"
 
 

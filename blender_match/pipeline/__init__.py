@@ -18,11 +18,11 @@ Modules: ``options`` (MatchOptions, their checks, quality -> Schedule), ``device
 """
 from .device import resolve_device
 from .graphs import load_graph
-from .match import Match, finish_calibration, fit_named_graph, fit_photo, match_photo
+from .match import Match, finish_calibration, fit_named_graph, fit_photo, match_photo, photo_loss
 from .options import AUTO_CANDIDATES, PHOTO_SIZE, MatchOptions, check_size, match_schedule
 from .rerender import render_params
 from .result_folder import MatchFailed
 
 __all__ = ["AUTO_CANDIDATES", "PHOTO_SIZE", "Match", "MatchFailed", "MatchOptions", "check_size", "finish_calibration",
-           "fit_named_graph", "fit_photo", "load_graph", "match_photo", "match_schedule", "render_params",
-           "resolve_device"]
+           "fit_named_graph", "fit_photo", "load_graph", "match_photo", "match_schedule", "photo_loss",
+           "render_params", "resolve_device"]

@@ -26,6 +26,7 @@ def test_recovery_writes_its_results(tmp_path):
     for measure in recovery.MEASURES:
         assert math.isfinite(row[f"{measure}_ratio"]) and row[f"{measure}_truth"] > 0
         assert row[f"{measure}_closer"] == (row[f"{measure}_final"] < row[f"{measure}_start"])
+    assert row["loss_truth"] > 0 and row["past_truth"] == (row["loss_final"] < row["loss_truth"])
     assert "| draft |" in (tmp_path / "results.md").read_text()
     assert (tmp_path / "recovery.png").stat().st_size > 1000
 
@@ -46,3 +47,18 @@ def test_a_draft_fit_keeps_fine_speckles():
             return patch_distance(photo, render_maps(graph(size=256, seed=0, theta=theta[None]))[:1])
 
     assert distance(result.theta) < distance(start)
+
+
+def test_the_truths_own_loss_is_zero_with_its_own_seed_and_not_with_another():
+    """``loss_truth`` renders the truth's parameters with the fit's seed under the target's flash:
+    against a target made with that very seed it is the loss of an image against itself."""
+    name = "plaster"
+    graph = load_library_graph(name)
+    apply_params(graph, sample_params(name, 300_000))
+    theta = graph.get_vector()
+    schedule = quality_schedule("draft")
+    same, _ = make_truth(graph, theta, 128, recovery.FIT_SEED)
+    other, _ = make_truth(graph, theta, 128, recovery.TRUTH_SEED)
+    itself = recovery.truth_loss(graph, theta, same, schedule, torch.device("cpu"))
+    reseeded = recovery.truth_loss(graph, theta, other, schedule, torch.device("cpu"))
+    assert itself < 1e-6 < reseeded
