@@ -39,6 +39,7 @@ from pathlib import Path
 import torch
 
 from ..diffmat.calibration import framed_maps
+from ..diffmat.optim import final_stage_loss
 from ..diffmat.render import render_maps
 from ..library import apply_params, builtin_names, load_library_graph, sample_params
 from ..pipeline import finish_calibration, fit_named_graph, match_schedule, photo_loss, resolve_device
@@ -74,14 +75,10 @@ def measures(graph, theta: torch.Tensor, photo: torch.Tensor, truth, size: int, 
 
 
 def truth_loss(graph, truth_theta: torch.Tensor, photo: torch.Tensor, schedule, device) -> float:
-    """The fit's loss (``schedule``'s last stage, as ``FitResult.loss_final`` is measured) of the
-    truth's parameters rendered with the fit's seed under the ideal flash the target was made with:
-    the descriptor's distance from the target to itself under another noise seed."""
-    last = schedule.stages[-1]
-    with torch.no_grad():
-        value = photo_loss(photo, device)(graph, truth_theta.reshape(1, -1).to(device), last.size, last.scales,
-                                          FIT_SEED, last.crop)
-    return float(value[0])
+    """The fit's loss (``schedule``'s, as ``FitResult.loss_final`` is measured) of the truth's
+    parameters rendered with the fit's seed under the ideal flash the target was made with: the
+    descriptor's distance from the target to itself under another noise seed."""
+    return final_stage_loss(photo_loss(photo, device), graph, truth_theta.to(device), schedule, FIT_SEED)
 
 
 def recover(name: str, k: int, size: int, presets, device, iterations: int | None = None, zoom: float | None = 1.0,

@@ -231,6 +231,14 @@ def _advance(value: torch.Tensor, current: float, theta: torch.Tensor, optimizer
     return optimizer
 
 
+def final_stage_loss(loss: TargetLoss, graph, theta: torch.Tensor, schedule: Schedule, seed: int = 0) -> float:
+    """The loss of the parameter vector ``theta`` (P,) as a fit on ``schedule`` measures its
+    ``loss_initial`` and ``loss_final``: at its last stage's size, scales and window."""
+    last = schedule.stages[-1]
+    with torch.no_grad():
+        return float(loss(graph, theta.reshape(1, -1), last.size, last.scales, seed, last.crop)[0])
+
+
 def fit(graph, loss: TargetLoss, schedule: Schedule, *, seed: int = 0, theta0: torch.Tensor | None = None,
         progress=None, cancel=None, keep_snapshots: bool = False) -> FitResult:
     """Fit ``graph``'s trainable parameters to ``loss``'s photo following ``schedule``.
@@ -247,10 +255,8 @@ def fit(graph, loss: TargetLoss, schedule: Schedule, *, seed: int = 0, theta0: t
         raise DiffMatError(f"graph {graph.name}: nothing to fit (no trainable parameter)")
     device = next(loss.descriptor.parameters()).device
     best = (graph.get_vector() if theta0 is None else theta0.detach().reshape(-1)).to(device).clamp(0, 1)
-    last = schedule.stages[-1]
     t_start = time.perf_counter()
-    with torch.no_grad():
-        loss_initial = float(loss(graph, best[None], last.size, last.scales, seed, last.crop)[0])
+    loss_initial = final_stage_loss(loss, graph, best, schedule, seed)
     if not math.isfinite(loss_initial):
         raise DiffMatError(f"graph {graph.name}: the loss at the start is not finite")
     result = FitResult(theta=best, loss_initial=loss_initial, loss_final=loss_initial, iterations=0, seconds=0.0)
