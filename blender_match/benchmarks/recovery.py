@@ -26,7 +26,9 @@ the descriptor can no longer tell the target from itself under another noise see
 gains beyond it is the target's particular noise), and the median seconds (start choice and fit;
 the 2K maps that ``match`` writes afterwards are not part of it). ``--quick``: one target for
 each of ``QUICK_GRAPHS`` (the full run: every library graph; ``--graphs`` picks others), every
-preset (``--quality draft,balanced``: those).
+preset (``--quality draft,balanced``: those). ``per_map`` breaks the map measure down: for each
+map, how many targets end closer to the truth's than they started. A target that fails (a graph
+that does not load, a device error) is listed under the config's ``failed`` and the run goes on.
 """
 from __future__ import annotations
 
@@ -139,6 +141,26 @@ def summarise(rows: list[dict], presets) -> list[dict]:
     return out
 
 
+def per_map(rows: list[dict], presets) -> list[dict]:
+    """One row per preset and map: of the targets where the map is not flat and equal to the
+    truth's at both ends (a metallic 0 against a metallic 0), how many end closer to the truth's
+    map than they started, and the median of the final RMSE over the start's: which maps a fit
+    moves toward the truth and which away."""
+    out = []
+    for preset in presets:
+        mine = [r for r in rows if r["preset"] == preset]
+        names = dict.fromkeys(k[len("rmse_"):-len("_start")] for r in mine for k in r
+                              if k.startswith("rmse_") and k.endswith("_start"))
+        for name in names:
+            pairs = [(r[f"rmse_{name}_start"], r[f"rmse_{name}_final"]) for r in mine
+                     if f"rmse_{name}_start" in r and max(r[f"rmse_{name}_start"], r[f"rmse_{name}_final"]) > 1e-6]
+            if pairs:
+                out.append({"preset": preset, "map": name, "targets": len(pairs),
+                            "closer": f"{sum(b < a for a, b in pairs)}/{len(pairs)}",
+                            "final_over_start": round(statistics.median(b / max(a, 1e-9) for a, b in pairs), 3)})
+    return out
+
+
 def markdown(summary: list[dict], rows: list[dict], config: dict) -> str:
     per_target = ["target", "preset", "start", "seconds", "patch_start_ratio", "patch_ratio", "maps_ratio",
                   "novel_ratio", "loss_final", "loss_truth"]
@@ -147,8 +169,13 @@ def markdown(summary: list[dict], rows: list[dict], config: dict) -> str:
               "truth re-rendered with the fit's seed); closer: share of targets that end closer to the truth than "
               "their start; past_truth: share whose fit's loss ends below loss_truth, the loss of the truth's own "
               "parameters with the fit's seed")
+    failed = [f"{f['target']}: {f['error']}" for f in config.get("failed", ())]
+    maps = per_map(rows, config["presets"])
     return "\n\n".join([
         "# bench recovery", legend, table(summary, list(summary[0])) if summary else "(no rows)",
+        *(["Failed targets (no row):\n\n" + "\n".join(f"- {f}" for f in failed)] if failed else []),
+        "## Per map (RMSE against the truth's map, final against start)",
+        table(maps, list(maps[0])) if maps else "(no rows)",
         "## Per target", table(rows, per_target) if rows else "(no rows)"]) + "\n"
 
 
@@ -159,28 +186,38 @@ def run(device: str = "cpu", graphs=None, quick: bool = False, quality: str | No
     names = list(graphs or (QUICK_GRAPHS if quick else builtin_names()))
     presets = tuple(quality.split(",")) if quality else PRESETS  # "draft,balanced": those two
     size = size or SIZE
-    rows = []
+    rows: list[dict] = []
+    failed: list[dict] = []
     started = time.perf_counter()
     for name in names:
         for t in range(targets):
-            rows.extend(recover(name, TARGET_K0 + t, size, presets, torch_device, iterations, zoom, lighting))
-            last = rows[-len(presets):]
-            print(f"[{time.perf_counter() - started:6.0f}s] {name}: " + ", ".join(
-                f"{r['preset']} patch {r['patch_start_ratio']:.2f}->{r['patch_ratio']:.2f} "
-                f"maps {r['maps_start_ratio']:.2f}->{r['maps_ratio']:.2f} ({r['seconds']:.0f}s)" for r in last),
-                file=sys.stderr, flush=True)
+            try:
+                last = recover(name, TARGET_K0 + t, size, presets, torch_device, iterations, zoom, lighting)
+            except Exception as exc:  # noqa: BLE001 - one target's failure is its own, not the whole run's
+                failed.append({"target": f"{name}/{TARGET_K0 + t}", "error": f"{type(exc).__name__}: {exc}"})
+                print(f"[{time.perf_counter() - started:6.0f}s] {name}: failed: {failed[-1]['error']}",
+                      file=sys.stderr, flush=True)
+            else:
+                rows.extend(last)
+                print(f"[{time.perf_counter() - started:6.0f}s] {name}: " + ", ".join(
+                    f"{r['preset']} patch {r['patch_start_ratio']:.2f}->{r['patch_ratio']:.2f} "
+                    f"maps {r['maps_start_ratio']:.2f}->{r['maps_ratio']:.2f} ({r['seconds']:.0f}s)" for r in last),
+                    file=sys.stderr, flush=True)
             if out is not None:  # after every target, so that a cut-short run leaves its results
                 write_results(Path(out), rows, presets, {"size": size, "iterations": iterations,
                               "device": str(torch_device), "threads": torch.get_num_threads(), "graphs": names,
-                              "presets": list(presets), "seconds": round(time.perf_counter() - started, 1)})
+                              "presets": list(presets), "failed": failed,
+                              "seconds": round(time.perf_counter() - started, 1)})
     return summarise(rows, presets)
 
 
 def write_results(out: Path, rows: list[dict], presets, config: dict):
-    """results.json, results.md and recovery.png in ``out``."""
+    """results.json, results.md and (once a target has a row) recovery.png in ``out``."""
     out.mkdir(parents=True, exist_ok=True)
     summary = summarise(rows, presets)
-    write_atomic(out / "results.json", json.dumps({"config": config, "summary": summary, "rows": rows},
+    write_atomic(out / "results.json", json.dumps({"config": config, "summary": summary,
+                                                   "per_map": per_map(rows, presets), "rows": rows},
                                                   indent=1).encode("utf-8"), overwrite=True)
     write_atomic(out / "results.md", markdown(summary, rows, config).encode("utf-8"), overwrite=True)
-    recovery_chart(out / "recovery.png", rows, presets, MEASURES)
+    if rows:  # nothing to chart while every target so far has failed
+        recovery_chart(out / "recovery.png", rows, presets, MEASURES)

@@ -29,6 +29,32 @@ def test_recovery_writes_its_results(tmp_path):
     assert row["loss_truth"] > 0 and row["past_truth"] == (row["loss_final"] < row["loss_truth"])
     assert "| draft |" in (tmp_path / "results.md").read_text()
     assert (tmp_path / "recovery.png").stat().st_size > 1000
+    maps = {m["map"]: m for m in data["per_map"]}
+    assert {"basecolor", "normal", "roughness", "height"} <= set(maps)
+    height = maps["height"]
+    assert height["closer"] == f"{int(row['rmse_height_final'] < row['rmse_height_start'])}/1"
+
+
+def test_per_map_counts_the_maps_that_end_closer_and_skips_a_flat_map_equal_to_the_truths():
+    rows = [{"preset": "draft", "rmse_height_start": 0.2, "rmse_height_final": 0.3,
+             "rmse_metallic_start": 0.0, "rmse_metallic_final": 0.0},
+            {"preset": "draft", "rmse_height_start": 0.2, "rmse_height_final": 0.1,
+             "rmse_metallic_start": 0.0, "rmse_metallic_final": 0.0},
+            {"preset": "draft", "rmse_height_start": 0.4, "rmse_height_final": 0.5,
+             "rmse_metallic_start": 0.1, "rmse_metallic_final": 0.05}]
+    out = recovery.per_map(rows, ["draft"])
+    assert out == [{"preset": "draft", "map": "height", "targets": 3, "closer": "1/3", "final_over_start": 1.25},
+                   {"preset": "draft", "map": "metallic", "targets": 1, "closer": "1/1", "final_over_start": 0.5}]
+
+
+def test_a_failed_target_is_reported_and_the_run_goes_on(tmp_path, capsys):
+    summary = recovery.run(graphs=["no_such_graph"], quality="draft", size=64, iterations=1, out=tmp_path)
+    assert summary == []
+    data = json.loads((tmp_path / "results.json").read_text())
+    (failed,) = data["config"]["failed"]
+    assert failed["target"] == f"no_such_graph/{recovery.TARGET_K0}" and "no_such_graph" in failed["error"]
+    assert "no_such_graph" in (tmp_path / "results.md").read_text()
+    assert "no_such_graph: failed" in capsys.readouterr().err
 
 
 def test_a_draft_fit_keeps_fine_speckles():
