@@ -3,18 +3,19 @@
 ``rank_graphs(photo)``: the selection index (``selection.index``) first lets through the
 ``SHORTLIST`` graphs whose bank samples come nearest the photo's compact descriptor, so that the
 cost below grows with the shortlist, not with the library. For each of them, a candidate parameter
-vector (the predictor's, the bank's nearest sample's, or both, keeping the better) is rendered at
-128 px and scored by the fit's own style loss (Gram descriptor at 128) against the photo, after
-the photo's exposure and white balance are given to it: the per-channel gain on its base colour
-that the match's own calibration would solve (``calibration.proposal_gains``), each stop of it
-costing a little (``correction_cost``). Without the gain a graph whose sampled colours happen to
-reach the photo's (a flat glossy paint, a galvanized sheet) beat the photo's own material in
-another colour, which the match would have re-tinted anyway; the graphs come best first, by
-that distance alone. Simplicity decides only the final choice among
-the fitted graphs (``selection.fit``): ordering near-ties by simplicity here pushed the true graph
-out of the top 3 on 2 of the 32 targets of ``bench selection`` (30/32 in the top 3 by distance,
-28/32 with the tie rule), while fitting one more candidate costs time, never the simpler answer
-(the final choice still prefers it).
+vector (the predictor's, the bank's nearest sample's, or with both models those two and the graph's
+own defaults, as a named graph's fit chooses its start: ``start.choose_start``; the best kept) is
+rendered at 128 px and scored by the fit's own style loss (Gram descriptor at 128) against the
+photo, after the photo's exposure and white balance are given to it: the per-channel gain on its
+base colour that the match's own calibration would solve (``calibration.proposal_gains``), each
+stop of it costing a little (``correction_cost``). Without the gain a graph whose sampled colours
+happen to reach the photo's (a flat glossy paint, a galvanized sheet) beat the photo's own material
+in another colour, which the match would have re-tinted anyway; the graphs come best first, by that
+distance alone. Simplicity decides only the final choice among the fitted graphs
+(``selection.fit``): ordering near-ties by simplicity here pushed the true graph out of the top 3
+on 2 of the 32 targets of ``bench selection`` (30/32 in the top 3 by distance, 28/32 with the tie
+rule), while fitting one more candidate costs time, never the simpler answer (the final choice
+still prefers it).
 """
 from __future__ import annotations
 
@@ -146,7 +147,7 @@ def rank_graphs(photo: torch.Tensor, method: str = "both", *, seed: int = 0, dev
                 materials: dict | None = None) -> list[dict]:
     """The library graphs with a model that come nearest the photo, best first: {"graph",
     "distance" (style loss at 128 px of the proposed parameters' render under its "gain", times
-    the gain's ``correction_cost``), "theta" (normalised (P,)), "start" ("predicted" | "bank"),
+    the gain's ``correction_cost``), "theta" (normalised (P,)), "start" ("predicted" | "bank" | "default"),
     "gain" (the base colour gain, 3 values), "nodes", "params"}. With banks (``method`` "bank" or
     "both"), only the ``shortlist`` graphs the selection index puts nearest (and any graph with
     a predictor but no bank) are rendered and returned; ``shortlist=None`` renders them all.
@@ -183,6 +184,8 @@ def rank_graphs(photo: torch.Tensor, method: str = "both", *, seed: int = 0, dev
         proposals = propose_starts(name, graph, descriptor, method, directory, bank_starts.get(name))
         if not proposals:
             continue
+        if method == "both":  # the starts a fit of this graph chooses among (``start.choose_start``)
+            proposals.append(("default", graph.get_vector()))
         thetas = torch.stack([t for _, t in proposals]).to(device)
         with torch.no_grad():
             maps = {u: m.expand(thetas.shape[0], -1, -1, -1)

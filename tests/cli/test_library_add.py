@@ -16,7 +16,7 @@ from blender_match.diffmat.render import render_maps
 from blender_match.library import load_library_graph, user_names
 from blender_match.library.catalog import USER_LIBRARY_ENV
 from blender_match.selection.bank import bank_is_current
-from blender_match.selection.rank import rank_graphs
+from blender_match.selection.rank import NoSelectionModels, rank_graphs
 
 USER_GRAPH = "synthoid_outputsizeexample"
 
@@ -75,7 +75,9 @@ def test_automatic_ranking_picks_the_user_graph_on_a_render_of_itself(in_library
         photo = render_maps(graph(size=256, seed=5)).clamp(0, 1)
     ranking = rank_graphs(photo, graphs=[USER_GRAPH, "plaster", "bricks", "painted_metal", "ceramic_tiles"])
     assert ranking[0]["graph"] == USER_GRAPH, [(e["graph"], round(e["distance"], 4)) for e in ranking]
-    assert ranking[0]["start"] == "bank"  # no predictor was trained: the bank proposes the start
+    assert ranking[0]["start"] == "default"  # a render of its defaults: they beat the bank's nearest sample
+    with pytest.raises(NoSelectionModels):  # no predictor was trained: only the bank (and the defaults) propose
+        rank_graphs(photo, "predictor", graphs=[USER_GRAPH])
 
 
 def test_a_second_run_resumes_and_remove_takes_the_graph_out(in_library, capsys):

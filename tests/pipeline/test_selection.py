@@ -173,6 +173,21 @@ def test_a_colour_cast_and_a_clipped_highlight_keep_the_true_graph_first(name):
     assert first["gain"][0] > 1.2 * first["gain"][2], first["gain"]
 
 
+@pytest.mark.parametrize("name", ["plaster", "marble"])
+def test_the_ranking_offers_a_graphs_own_defaults_as_a_named_fit_does(name):
+    """A render of the graph at its authored defaults: the defaults, which a named fit's start
+    weighs too (``choose_start``), score nearer it than either model's proposal, and the ranking
+    keeps them; a ranking by one model alone never offers them."""
+    with torch.no_grad():
+        photo = render_maps(load_library_graph(name)(size=256, seed=11))[:1].clamp(0, 1)
+    (both,) = rank_graphs(photo, "both", graphs=[name])
+    (predicted,) = rank_graphs(photo, "predictor", graphs=[name])
+    (bank,) = rank_graphs(photo, "bank", graphs=[name])
+    assert both["start"] == "default" and predicted["start"] == "predicted" and bank["start"] == "bank"
+    assert both["distance"] < min(predicted["distance"], bank["distance"])
+    assert torch.allclose(both["theta"], load_library_graph(name).get_vector())
+
+
 def test_a_tint_costs_the_ranking_more_than_an_exposure():
     """The cost of a proposal's gain: none for none; a stop of exposure costs EXPOSURE_WEIGHT, a
     tint of a stop either way around the same exposure TINT_WEIGHT x its mean stops."""
