@@ -161,7 +161,7 @@ def per_map(rows: list[dict], presets) -> list[dict]:
     return out
 
 
-def markdown(summary: list[dict], rows: list[dict], config: dict) -> str:
+def markdown(summary: list[dict], maps: list[dict], rows: list[dict], config: dict) -> str:
     per_target = ["target", "preset", "start", "seconds", "patch_start_ratio", "patch_ratio", "maps_ratio",
                   "novel_ratio", "loss_final", "loss_truth"]
     legend = (f"size {config['size']} px, truth seed {TRUTH_SEED}, fit seed {FIT_SEED}, device {config['device']}, "
@@ -170,7 +170,6 @@ def markdown(summary: list[dict], rows: list[dict], config: dict) -> str:
               "their start; past_truth: share whose fit's loss ends below loss_truth, the loss of the truth's own "
               "parameters with the fit's seed")
     failed = [f"{f['target']}: {f['error']}" for f in config.get("failed", ())]
-    maps = per_map(rows, config["presets"])
     return "\n\n".join([
         "# bench recovery", legend, table(summary, list(summary[0])) if summary else "(no rows)",
         *(["Failed targets (no row):\n\n" + "\n".join(f"- {f}" for f in failed)] if failed else []),
@@ -214,10 +213,9 @@ def run(device: str = "cpu", graphs=None, quick: bool = False, quality: str | No
 def write_results(out: Path, rows: list[dict], presets, config: dict):
     """results.json, results.md and (once a target has a row) recovery.png in ``out``."""
     out.mkdir(parents=True, exist_ok=True)
-    summary = summarise(rows, presets)
-    write_atomic(out / "results.json", json.dumps({"config": config, "summary": summary,
-                                                   "per_map": per_map(rows, presets), "rows": rows},
-                                                  indent=1).encode("utf-8"), overwrite=True)
-    write_atomic(out / "results.md", markdown(summary, rows, config).encode("utf-8"), overwrite=True)
+    summary, maps = summarise(rows, presets), per_map(rows, presets)
+    write_atomic(out / "results.json", json.dumps({"config": config, "summary": summary, "per_map": maps,
+                                                   "rows": rows}, indent=1).encode("utf-8"), overwrite=True)
+    write_atomic(out / "results.md", markdown(summary, maps, rows, config).encode("utf-8"), overwrite=True)
     if rows:  # nothing to chart while every target so far has failed
         recovery_chart(out / "recovery.png", rows, presets, MEASURES)

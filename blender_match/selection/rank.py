@@ -90,8 +90,10 @@ def order_by_simplicity(entries: list[dict], tolerance: float = TIE_TOLERANCE, k
 def propose_starts(name: str, graph, descriptor: torch.Tensor, method: str = "both",
                    directory=None, bank_start: torch.Tensor | None = None) -> list[tuple[str, torch.Tensor]]:
     """(start kind, normalised (P,) theta) the models propose for one graph, given the photo's
-    compact descriptor. ``bank_start``: the bank's nearest sample when the caller already has it
-    (the selection index's); else the graph's bank is read."""
+    compact descriptor; with both models (``method`` "both"), the graph's own defaults first, so
+    that a ranking and a named graph's fit (``start.choose_start``) weigh the same starts. None at
+    all when no model of ``method`` has a proposal. ``bank_start``: the bank's nearest sample when
+    the caller already has it (the selection index's); else the graph's bank is read."""
     out = []
     P = graph.num_params()
     if method in ("predictor", "both") and predictor_is_current(name, directory):
@@ -105,6 +107,8 @@ def propose_starts(name: str, graph, descriptor: torch.Tensor, method: str = "bo
             bank_start = nearest(bank, descriptor.cpu())[0]["theta"] if bank is not None else None
         if bank_start is not None and bank_start.numel() == P:
             out.append(("bank", bank_start))
+    if out and method == "both":
+        out.insert(0, ("default", graph.get_vector()))
     return out
 
 
@@ -184,8 +188,6 @@ def rank_graphs(photo: torch.Tensor, method: str = "both", *, seed: int = 0, dev
         proposals = propose_starts(name, graph, descriptor, method, directory, bank_starts.get(name))
         if not proposals:
             continue
-        if method == "both":  # the starts a fit of this graph chooses among (``start.choose_start``)
-            proposals.append(("default", graph.get_vector()))
         thetas = torch.stack([t for _, t in proposals]).to(device)
         with torch.no_grad():
             maps = {u: m.expand(thetas.shape[0], -1, -1, -1)

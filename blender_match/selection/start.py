@@ -23,12 +23,11 @@ def choose_start(graph, name: str | None, loss: TargetLoss, schedule: Schedule, 
     proposals = propose_starts(name, graph, descriptor, "both", directory)
     if not proposals:
         return None, "default"
-    proposals.insert(0, ("default", graph.get_vector()))
     first = schedule.stages[0]
     thetas = torch.stack([t.to(device) for _, t in proposals])
     with torch.no_grad():
         losses = loss(graph, thetas, first.size, first.scales, seed, first.crop).cpu()
     best = best_finite(losses)
-    if best == 0:
+    if proposals[best][0] == "default":
         return None, "default"
     return proposals[best][1], proposals[best][0]
