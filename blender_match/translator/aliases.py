@@ -19,8 +19,8 @@ Value conversions (``convert_value``) for parameters whose meaning differs betwe
 versions: a legacy ``Disorder`` slider runs 0..100 where the specs' ``disorder`` is 0..1 (a value
 above 1 is divided by 100); ``gradient_linear_*``'s ``rotation`` is an integer index of quarter
 turns in the library and turns in the specs; Make It Tile Patch's angles are degrees; the
-Scratches Generator's ``Spline Number`` counts every scratch, where our ``amount`` is the side of
-a lattice holding two a cell.
+Scratches Generator's ``Spline Number`` (and the older ``Scratches Amount``) counts every scratch,
+where our ``amount`` is the side of a lattice holding two a cell.
 """
 from __future__ import annotations
 
@@ -48,6 +48,9 @@ TILE_GENERATOR_ALIASES: dict[str, str | tuple[str, ...]] = {
 # rotation and its random spread in turns, a random length spread; Spline Scale and Width have
 # units we do not know
 SCRATCHES = ("scratches_generator", "scratches_generator_normal")
+# the identifiers that count every scratch: the current Spline Number (1-512, "amount of scratches",
+# its documentation) and the older Scratches Amount (production files set 30 and 3965)
+SCRATCH_COUNTS = ("spline_number", "scratches_amount")
 SCRATCHES_ALIASES: dict[str, str | tuple[str, ...]] = {
     "scratches_amount": "amount", "spline_number": "amount", "spline_rotation": "angle",
     "spline_rotation_random": "angle_random", "spline_scale_random": "length_random",
@@ -85,6 +88,8 @@ INPUT_ALIASES: dict[str, dict[str, str]] = {
     "slope_blur_grayscale": {"input": "source", "slope": "effect"},
     "slope_blur": {"input": "source", "slope": "effect"},
     "non_uniform_blur_grayscale": {"input": "source", "blur_map": "effect"},
+    # Mosaic's current identifiers are Source and Effect
+    "mosaic_grayscale": {"source": "input"},
 }
 
 # parameters whose file value is rescaled: (node or "*", spec parameter) -> converter
@@ -165,7 +170,7 @@ def convert_value(spec_name: str, param: str, identifier: str, value):
         return (value / 360.0) % 1.0
     if ident == "free_rotation_random" and isinstance(value, (int, float)):
         return min(value / 720.0, 0.5)   # a spread of that many degrees in all, ± half of it: 360 is any angle
-    if spec_name in SCRATCHES and ident == "spline_number" and isinstance(value, (int, float)):
+    if spec_name in SCRATCHES and ident in SCRATCH_COUNTS and isinstance(value, (int, float)):
         return max(1, round(math.sqrt(value / 2.0)))   # two scratches a cell of an amount x amount lattice
     return value
 

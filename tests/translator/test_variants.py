@@ -89,7 +89,9 @@ def test_normalisation_and_resolution_rules():
     assert aliases.resolve_param(scratches, "spline_rotation") == [("angle", None)]
     assert aliases.resolve_param(scratches, "Spline_Number") == [("amount", None)]
     assert aliases.convert_value("scratches_generator", "amount", "spline_number", 26) == 4   # 2 x 4² ≈ 26
-    assert aliases.convert_value("scratches_generator", "amount", "scratches_amount", 26) == 26
+    # the older identifier counts every scratch too: a production file's 3965 is a lattice of 45, not 64
+    assert aliases.convert_value("scratches_generator", "amount", "scratches_amount", 26) == 4
+    assert aliases.convert_value("scratches_generator", "amount", "scratches_amount", 3965) == 45
     assert aliases.convert_value("gradient_linear_1", "rotation", "rotation", 0.5) == 0.5
 
 
@@ -121,13 +123,13 @@ def test_stripes_count_is_read_from_its_library_identifier(tmp_path):
 def test_an_integer_past_its_slider_is_used_or_clamped(tmp_path):
     """Substance takes slider ranges as hints: a production file's Tile Generator of 100 x 100
     tiles was drawn with the default 10 x 10. An integer past the spec's range is now clamped to
-    it (and reported), one within the engine's range used as it is."""
-    t = _one_instance(tmp_path, "tile_generator", [W.param("X_Amount", "constantValueInt32", 100),
-                                                   W.param("Y_Amount", "constantValueInt32", 900)],
+    it (and reported), one within the engine's range used as it is (production files set 500)."""
+    t = _one_instance(tmp_path, "tile_generator", [W.param("X_Amount", "constantValueInt32", 500),
+                                                   W.param("Y_Amount", "constantValueInt32", 2000)],
                       out_ident="TileGenerator")
     vals, _ = _values(t, "tile_generator")
-    assert (vals["x_amount"], vals["y_amount"]) == (100, 256)
-    assert any("y_amount: value 900 is outside [1, 256]; 256 used" in w for w in t.report["warnings"])
+    assert (vals["x_amount"], vals["y_amount"]) == (500, 1024)
+    assert any("y_amount: value 2000 is outside [1, 1024]; 1024 used" in w for w in t.report["warnings"])
 
 
 def test_vector_parameter_spread_over_components(tmp_path):
@@ -219,6 +221,33 @@ def test_input_slot_spellings(tmp_path):
     assert not any("connection dropped" in w for w in t.report["warnings"])
     node = next(n for n in t.graph.nodes.values() if n.spec.name == "histogram_scan")
     assert node is not None
+
+
+def test_mosaic_reads_its_source_slot(tmp_path):
+    """Mosaic's current slots are Source and Effect: two production leathers connected both, and
+    the Source connection was dropped (the node warped nothing)."""
+    src = W.filter_node(5, "uniform", params=[W.param("outputcolor", "constantValueFloat4", "0.3 0.3 0.3 1"),
+                                              W.param("colorswitch", "constantValueBool", 0)], outputs=[(6, 2)])
+    t = _one_instance(tmp_path, "mosaic_grayscale", [W.param("Intensity", "constantValueFloat1", 0.01)],
+                      out_ident="Output", conns=[("Source", 5, 6), ("Effect", 5, 6)], extra=[src])
+    assert not any("connection dropped" in w for w in t.report["warnings"])
+    assert float(t.graph(size=SIZE)["height"].detach().mean()) == pytest.approx(0.3, abs=1e-3)
+
+
+def test_tile_sampler_draws_its_sixteenth_pattern(tmp_path):
+    """Tile Sampler's Pattern list runs one shape past the Tile Generator's, to Hemisphere (16): a
+    production ferrofluid sets it, and its tiles were drawn as the default squares."""
+    t = _one_instance(tmp_path, "tile_sampler", [W.param("pattern", "constantValueInt32", 16),
+                                                 W.param("x_amount", "constantValueInt32", 2),
+                                                 W.param("y_amount", "constantValueInt32", 2)], out_ident="output")
+    assert not t.report["warnings"]
+    vals, _ = _values(t, "tile_sampler")
+    assert vals["pattern"] == 16
+    height = t.graph(size=64)["height"].detach()[0, 0]
+    tile = height[:32, :32]
+    # a dome: brightest at the tile's centre, falling off to its corners (a square would be flat)
+    assert float(tile[14:18, 14:18].mean()) > float(tile[4:8, 14:18].mean()) + 0.1
+    assert float(tile[1, 1]) < 0.05
 
 
 @pytest.mark.parametrize("name,expected", [("directional_noise", "directionnal_noise"),

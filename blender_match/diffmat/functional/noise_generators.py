@@ -238,6 +238,8 @@ def noise_fractal_sum_base(*, roughness=0.5, min_level: int = 1, max_level: int 
 # the rows of an Anisotropic Noise whose Y Amount follows the resolution: one a pixel at 512 px,
 # White Noise's texture-space lattice, so that the maps stay the same at every output size
 RESOLUTION_ROWS = 512
+# the most lattice cells a side Anisotropic Noise takes: production files set 289 and 512
+MAX_LATTICE = 1024
 
 
 def noise_anisotropic(*, x_amount: int = 8, y_amount: int = 128, smoothness=0.5, interpolation: bool = True,

@@ -30,6 +30,11 @@ __all__ = ["tile_pattern", "tile_pattern_color", "tile_sampler_pattern", "brick_
 
 # Tile Generator "Pattern" list: 0 is the image input, then the shape library in Substance's order.
 TILE_PATTERNS = ("image",) + SHAPES[:15]
+# Tile Sampler's list goes one shape further, to Hemisphere (16): production files set it
+TILE_SAMPLER_PATTERNS = ("image",) + SHAPES
+# the most tiles a side a layout takes. Substance's sliders stop at 64, but a file may hold more,
+# and production files do (400 and 500 a side: about a pixel a tile at 512 px)
+MAX_TILES = 1024
 
 
 def _image_profile(image):
@@ -52,12 +57,17 @@ MONOTONE_SHAPES = frozenset(("square", "disc", "paraboloid", "bell", "gaussian",
                              "ridged_bell", "capsule", "cone", "hemisphere"))
 
 
-def _monotone(pattern: int) -> bool:
-    return TILE_PATTERNS[int(pattern)] in MONOTONE_SHAPES
+def _patterns(where: str) -> tuple[str, ...]:
+    return TILE_SAMPLER_PATTERNS if where == "tile_sampler" else TILE_PATTERNS
+
+
+def _monotone(pattern: int, where: str) -> bool:
+    return _patterns(where)[int(pattern)] in MONOTONE_SHAPES
 
 
 def _pattern_profile(pattern: int, image, where: str):
-    name = TILE_PATTERNS[check_enum(pattern, f"{where}.pattern", range(len(TILE_PATTERNS)))]
+    patterns = _patterns(where)
+    name = patterns[check_enum(pattern, f"{where}.pattern", range(len(patterns)))]
     if name == "image":
         if image is None:  # nothing connected: Substance draws nothing
             return lambda x, y, w, s, ex=None, ey=None: torch.zeros_like(x)
@@ -102,8 +112,8 @@ def _transposed_layout(nx: int, ny: int, profile, field: dict, grid_mask: GridMa
 def _tile_generator(where: str, image, args: dict):
     """The layout of a Tile Generator family node: its grid and pattern checked, then ``tile_field``
     with the node's arguments ``args`` (its ``locals()``) that ``tile_field`` takes."""
-    nx = check_int(args["x_amount"], f"{where}.x_amount", 1, 256)
-    ny = check_int(args["y_amount"], f"{where}.y_amount", 1, 256)
+    nx = check_int(args["x_amount"], f"{where}.x_amount", 1, MAX_TILES)
+    ny = check_int(args["y_amount"], f"{where}.y_amount", 1, MAX_TILES)
     profile = _pattern_profile(args["pattern"], image, where)
     field = {k: args[k] for k in _TILE_FIELD_ARGS if k in args}
     if "blending_mode" in args:
@@ -123,7 +133,7 @@ def _tile_generator(where: str, image, args: dict):
     transposed = bool(args.get("vertical_offset"))
     if transposed:
         nx, ny, profile, field, grid_mask = _transposed_layout(nx, ny, profile, field, grid_mask)
-    height, color = tile_field(args["size"], nx, ny, profile=profile, own_cell=_monotone(args["pattern"]),
+    height, color = tile_field(args["size"], nx, ny, profile=profile, own_cell=_monotone(args["pattern"], where),
                                grid_mask=grid_mask, **field)
     if transposed:
         height = height.transpose(-1, -2)

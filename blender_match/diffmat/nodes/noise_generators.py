@@ -7,7 +7,7 @@ maps. Substance has ``scale`` as an integer slider on most noises; it is declare
 that it can be optimised, and an integer value gives exactly the integer frequency.
 """
 from .. import functional as F
-from ..functional.noise_generators import NOISE_RECIPES
+from ..functional.noise_generators import MAX_LATTICE, NOISE_RECIPES
 from .registry import register
 from .spec import NodeSpec, Param
 
@@ -53,8 +53,8 @@ register(NodeSpec(
     context=CONTEXT, doc="Fractal Sum Base: a sum of value-noise levels 2^min_level .. 2^max_level cells."))
 register(NodeSpec(
     "anisotropic_noise", "generator", F.noise_anisotropic,
-    params=(Param("x_amount", 8, 1, 256, kind="int", doc="lattice cells across"),
-            Param("y_amount", 128, 1, 256, kind="int", doc="lattice cells down"),
+    params=(Param("x_amount", 8, 1, MAX_LATTICE, kind="int", doc="lattice cells across"),
+            Param("y_amount", 128, 1, MAX_LATTICE, kind="int", doc="lattice cells down"),
             Param("smoothness", 0.5, 0.0, 1.0, doc="hard bands (0) to smooth interpolation down (1)"),
             Param("interpolation", True, kind="bool", doc="cubic (on) or linear (off) interpolation"),
             Param("rotate", False, kind="bool", doc="a quarter turn: vertical streaks"),

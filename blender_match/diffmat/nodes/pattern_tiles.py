@@ -1,18 +1,19 @@
 """Declarations of the tile-layout pattern generators (see functional/pattern_tiles.py)."""
 from .. import functional as F
-from ..functional.pattern_tiles import TILE_BLENDINGS, TILE_PATTERNS
+from ..functional.pattern_tiles import MAX_TILES, TILE_BLENDINGS, TILE_PATTERNS, TILE_SAMPLER_PATTERNS
 from .registry import register
 from .spec import Input, NodeSpec, Param
 
 GEN = ("size", "seed", "device", "dtype")
 PATTERN_DOC = ", ".join(f"{i} {n}" for i, n in enumerate(TILE_PATTERNS))
+SAMPLER_PATTERN_DOC = ", ".join(f"{i} {n}" for i, n in enumerate(TILE_SAMPLER_PATTERNS))
 BLENDING_DOC = "how overlapping tiles combine: 0 Add, 2 Max, 3 Add Sub (1: Add)"
 
 
 def _layout(pattern=8, scale=1.0):
     return (
-        Param("x_amount", 10, 1, 256, kind="int", doc="tiles across"),
-        Param("y_amount", 10, 1, 256, kind="int", doc="tiles down"),
+        Param("x_amount", 10, 1, MAX_TILES, kind="int", doc="tiles across"),
+        Param("y_amount", 10, 1, MAX_TILES, kind="int", doc="tiles down"),
         Param("pattern", pattern, kind="enum", choices=tuple(range(len(TILE_PATTERNS))), doc=PATTERN_DOC),
         Param("pattern_specific", 0.2, 0.0, 1.0, doc="shape-dependent control (Brick: bevel width)"),
         Param("scale", scale, 0.0, 2.0, doc="1 fills the cell"),
@@ -68,9 +69,10 @@ register(NodeSpec(
 register(NodeSpec(
     "tile_sampler", "generator", F.tile_sampler_pattern,
     inputs=(Input("pattern_input", "any", optional=True),),
-    params=(Param("x_amount", 16, 1, 256, kind="int"),
-            Param("y_amount", 16, 1, 256, kind="int"),
-            Param("pattern", 1, kind="enum", choices=tuple(range(len(TILE_PATTERNS))), doc=PATTERN_DOC),
+    params=(Param("x_amount", 16, 1, MAX_TILES, kind="int"),
+            Param("y_amount", 16, 1, MAX_TILES, kind="int"),
+            Param("pattern", 1, kind="enum", choices=tuple(range(len(TILE_SAMPLER_PATTERNS))),
+                  doc=SAMPLER_PATTERN_DOC),
             Param("scale", 0.8, 0.0, 2.0),
             Param("size_xy", (1.0, 1.0), 0.0, 2.0, size=2, doc="non-uniform size"),
             Param("position_random", 0.0, 0.0, 1.0),
