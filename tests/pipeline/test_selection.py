@@ -13,6 +13,7 @@ from blender_match.diffmat.render import FlashCamera, linear_to_srgb, render_map
 from blender_match.errors import OptionError
 from blender_match.library import builtin_names, library_names, load_library_graph
 from blender_match.pipeline import match_schedule
+from blender_match.pipeline.user_library import bank_batch
 from blender_match.selection import predictor
 from blender_match.selection.bank import (
     SampleSpace,
@@ -69,6 +70,17 @@ def test_compact_descriptor_shape_and_determinism():
     assert torch.equal(a, b)
     d = descriptor_distance(a, b)
     assert d.shape == (2, 2) and d[0, 0] == 0 and d[0, 1] > 0
+
+
+def test_a_bank_rendered_one_sample_at_a_time_is_the_batched_bank(tmp_path):
+    """The user library renders its bank one sample at a time on a CPU (``bank_batch``: the peak
+    memory of one sample) and eight at a time elsewhere; the bank is the same either way."""
+    assert bank_batch("cpu") == 1 and bank_batch(torch.device("cpu")) == 1 and bank_batch("cuda:0") == 8
+    one = load_bank("plaster", build_bank("plaster", n=3, size=64, directory=tmp_path / "one", batch=1).parent)
+    eight = load_bank("plaster", build_bank("plaster", n=3, size=64, directory=tmp_path / "eight").parent)
+    assert one is not None and eight is not None
+    assert torch.equal(one["thetas"], eight["thetas"])
+    assert torch.allclose(one["descriptors"], eight["descriptors"], atol=2e-2)
 
 
 def test_bank_nearest_neighbour_finds_the_sample_itself(tmp_path):
