@@ -4,9 +4,12 @@ bank (``selection.bank``), so that ``match`` without ``--graph`` ranks it beside
 
 Resumable: a file already in the library unchanged (same name, same SHA-256) is not translated
 again, and its bank is built only when it is missing or stale, so an interrupted run over a folder,
-started again, picks up at the first file not done. A bank is written whole (64 samples), never
-half. The parameter predictor, a longer training, is left to
-``blender-match train --graph NAME``; the bank alone ranks a graph and proposes its start.
+started again, picks up at the first file not done. A bank is written whole, never half: the
+graph's own defaults and 64 samples. The defaults are the look the file's author made; the samples
+move every optimisable parameter at once (±15% of its range around its authored value), and over
+hundreds of parameters they can all land far from it (docs/matching.md). The parameter predictor,
+a longer training, is left to ``blender-match train --graph NAME``; the bank alone ranks a graph
+and proposes its start.
 """
 from __future__ import annotations
 
@@ -53,6 +56,6 @@ def add_sbs(sbs, *, name: str | None = None, graph_name: str | None = None, over
         entry = add_entry(sbs, name, graph_name, overwrite=overwrite)
         status = "added"
     if status != "up to date":
-        build_bank(name, device=device, progress=progress, batch=bank_batch(device))
+        build_bank(name, device=device, progress=progress, batch=bank_batch(device), with_defaults=True)
     return {"name": name, "status": status, "nodes": entry["nodes"], "params": entry["params_optimizable"],
             "passthrough": entry.get("nodes_passthrough", 0), "seconds": time.perf_counter() - start}

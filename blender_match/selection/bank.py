@@ -125,21 +125,26 @@ def describe(images: torch.Tensor, device="cpu", size: int = DESCRIPTOR_SIZE) ->
         return compact_descriptor(shared_vgg(device), images.to(device), size).cpu()
 
 
+DEFAULTS_INDEX = -1  # a bank row's sample index when the row is the graph's own defaults
+
+
 def build_bank(name: str, n: int = BANK_SIZE, size: int = DESCRIPTOR_SIZE, seed: int = BANK_SEED,
-               directory=None, device="cpu", progress=None, batch: int = 8) -> Path:
-    """Render and describe samples 0..n-1 of a library graph and write its bank file.
+               directory=None, device="cpu", progress=None, batch: int = 8, with_defaults: bool = False) -> Path:
+    """Render and describe samples 0..n-1 of a library graph and write its bank file;
+    ``with_defaults`` puts the graph's own defaults first (index ``DEFAULTS_INDEX``).
     ``progress(done, total)`` after every batch."""
     space = SampleSpace(name)
     graph = space.graph.to(device)
-    thetas = torch.stack([space.vector(k) for k in range(n)])
+    indices = ([DEFAULTS_INDEX] if with_defaults else []) + list(range(n))
+    thetas = torch.stack([space.default.clone() if k == DEFAULTS_INDEX else space.vector(k) for k in indices])
     descriptors = []
-    for start in range(0, n, batch):
+    for start in range(0, len(indices), batch):
         images = render_images(graph, thetas[start:start + batch].to(device), seed, size)
         descriptors.append(describe(images, device, size))
         if progress is not None:
-            progress(min(n, start + batch), n)
+            progress(min(len(indices), start + batch), len(indices))
     graph.clear_cache()
-    return write_bank(name, thetas, torch.cat(descriptors), list(range(n)), size, seed, directory)
+    return write_bank(name, thetas, torch.cat(descriptors), indices, size, seed, directory)
 
 
 def bank_path(name: str, directory=None) -> Path:

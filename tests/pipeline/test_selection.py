@@ -16,6 +16,7 @@ from blender_match.pipeline import match_schedule
 from blender_match.pipeline.user_library import bank_batch
 from blender_match.selection import predictor
 from blender_match.selection.bank import (
+    DEFAULTS_INDEX,
     SampleSpace,
     bank_is_current,
     build_bank,
@@ -81,6 +82,17 @@ def test_a_bank_rendered_one_sample_at_a_time_is_the_batched_bank(tmp_path):
     assert one is not None and eight is not None
     assert torch.equal(one["thetas"], eight["thetas"])
     assert torch.allclose(one["descriptors"], eight["descriptors"], atol=2e-2)
+
+
+def test_a_user_bank_holds_the_graphs_own_defaults_first(tmp_path):
+    """A user graph's samples move every parameter at once; its bank also holds the authored
+    defaults (index DEFAULTS_INDEX), which a render of the defaults finds first."""
+    bank = load_bank("plaster", build_bank("plaster", n=2, size=64, directory=tmp_path, with_defaults=True).parent)
+    assert bank is not None and bank["indices"].tolist() == [DEFAULTS_INDEX, 0, 1]
+    space = SampleSpace("plaster")
+    assert torch.equal(bank["thetas"][0], space.default) and torch.equal(bank["thetas"][2], space.vector(1))
+    image = render_images(space.graph, space.default[None], bank["seed"], 64)
+    assert nearest(bank, describe(image, size=64))[0]["index"] == DEFAULTS_INDEX
 
 
 def test_bank_nearest_neighbour_finds_the_sample_itself(tmp_path):
