@@ -9,4 +9,4 @@ against fresh renders by ``tests/pipeline/test_selection.py``, which fails when 
 without this number and the models following.
 """
 
-RENDER_REVISION = 7
+RENDER_REVISION = 8
