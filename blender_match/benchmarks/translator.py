@@ -1,5 +1,6 @@
 """``blender-match bench translator [--files F.sbs|DIR …]``: translate and render every .sbs file
-given (a folder: every .sbs under it), and count how many translate and how many render.
+given (a folder: every .sbs under it, as ``library add`` reads one), and count how many translate
+and how many render.
 
 Per file: the translation time (best of 3), the node counts (native, passed through, and the kinds
 passed through), the optimisable parameters, the evaluation time of the translated graph at 512²
@@ -14,19 +15,12 @@ from pathlib import Path
 import torch
 
 from ..errors import BlenderMatchError
+from ..pipeline.user_library import sbs_files
 from ..translator import Translation, translate
 from .measure import best_of
 
 DEFAULT_DIR = Path(__file__).resolve().parents[2].parent / "shared" / "data" / "sbs"
 SIZE = 512
-
-
-def sbs_files(paths: list[Path]) -> list[Path]:
-    """The .sbs files among ``paths``, a folder standing for every .sbs under it (sorted)."""
-    found: list[Path] = []
-    for path in paths:
-        found += sorted(path.rglob("*.sbs")) if path.is_dir() else [path]
-    return found
 
 
 def _passthrough_kinds(report: dict) -> str:
@@ -59,7 +53,7 @@ def _render(path: Path, result: Translation, device: str, row: dict):
 
 
 def run(device: str = "cpu", files: list[Path] | None = None, repeats: int = 3) -> list[dict]:
-    files = sbs_files([Path(f) for f in files]) if files else sorted(DEFAULT_DIR.glob("*.sbs"))
+    files = [f for given in files for f in sbs_files(given)] if files else sorted(DEFAULT_DIR.glob("*.sbs"))
     if not files:
         raise FileNotFoundError(f"{DEFAULT_DIR}: no .sbs files to translate (pass --files)")
     rows = []
