@@ -57,17 +57,8 @@ MONOTONE_SHAPES = frozenset(("square", "disc", "paraboloid", "bell", "gaussian",
                              "ridged_bell", "capsule", "cone", "hemisphere"))
 
 
-def _patterns(where: str) -> tuple[str, ...]:
-    return TILE_SAMPLER_PATTERNS if where == "tile_sampler" else TILE_PATTERNS
-
-
-def _monotone(pattern: int, where: str) -> bool:
-    return _patterns(where)[int(pattern)] in MONOTONE_SHAPES
-
-
-def _pattern_profile(pattern: int, image, where: str):
-    patterns = _patterns(where)
-    name = patterns[check_enum(pattern, f"{where}.pattern", range(len(patterns)))]
+def _pattern_profile(name: str, image):
+    """The height profile of the pattern ``name`` (a ``TILE_SAMPLER_PATTERNS`` entry)."""
     if name == "image":
         if image is None:  # nothing connected: Substance draws nothing
             return lambda x, y, w, s, ex=None, ey=None: torch.zeros_like(x)
@@ -109,12 +100,14 @@ def _transposed_layout(nx: int, ny: int, profile, field: dict, grid_mask: GridMa
     return ny, nx, read_transposed, swapped, mask
 
 
-def _tile_generator(where: str, image, args: dict):
-    """The layout of a Tile Generator family node: its grid and pattern checked, then ``tile_field``
-    with the node's arguments ``args`` (its ``locals()``) that ``tile_field`` takes."""
+def _tile_generator(where: str, image, args: dict, patterns: tuple[str, ...] = TILE_PATTERNS):
+    """The layout of a Tile Generator family node: its grid and pattern (an index of ``patterns``)
+    checked, then ``tile_field`` with the node's arguments ``args`` (its ``locals()``) that
+    ``tile_field`` takes."""
     nx = check_int(args["x_amount"], f"{where}.x_amount", 1, MAX_TILES)
     ny = check_int(args["y_amount"], f"{where}.y_amount", 1, MAX_TILES)
-    profile = _pattern_profile(args["pattern"], image, where)
+    pattern = patterns[check_enum(args["pattern"], f"{where}.pattern", range(len(patterns)))]
+    profile = _pattern_profile(pattern, image)
     field = {k: args[k] for k in _TILE_FIELD_ARGS if k in args}
     if "blending_mode" in args:
         field["blending"] = TILE_BLENDINGS[check_enum(args["blending_mode"], f"{where}.blending_mode",
@@ -133,7 +126,7 @@ def _tile_generator(where: str, image, args: dict):
     transposed = bool(args.get("vertical_offset"))
     if transposed:
         nx, ny, profile, field, grid_mask = _transposed_layout(nx, ny, profile, field, grid_mask)
-    height, color = tile_field(args["size"], nx, ny, profile=profile, own_cell=_monotone(args["pattern"], where),
+    height, color = tile_field(args["size"], nx, ny, profile=profile, own_cell=pattern in MONOTONE_SHAPES,
                                grid_mask=grid_mask, **field)
     if transposed:
         height = height.transpose(-1, -2)
@@ -197,7 +190,7 @@ def tile_sampler_pattern(pattern_input=None, *, x_amount: int = 16, y_amount: in
                          size: int = 512, seed: int = 0, device=None, dtype=torch.float32) -> torch.Tensor:
     """Tile Sampler (simplified): the Tile Generator layout with the Tile Sampler's parameters
     (no map inputs, no vector/colour outputs)."""
-    out, _ = _tile_generator("tile_sampler", pattern_input, locals())
+    out, _ = _tile_generator("tile_sampler", pattern_input, locals(), TILE_SAMPLER_PATTERNS)
     return out
 
 
