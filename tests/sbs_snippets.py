@@ -114,3 +114,13 @@ def package(graphs: list[str], dependencies=()) -> str:
     return (f'<?xml version="1.0" encoding="UTF-8"?><package>{v("identifier", "test")}'
             f"{v('formatVersion', '1.1.0.202302')}<dependencies>{deps}</dependencies>"
             f"<content>{''.join(graphs)}</content></package>")
+
+
+def white_noise_package(identifier: str = "Grain") -> str:
+    """A package of one graph whose base colour is Substance's White Noise: a grain a pixel wide
+    at every output size, so the graph looks different rendered at 128 px than at 512 brought
+    down (``selection.bank.measured_supersample``)."""
+    nodes = [instance_node(10, "pkg:///white_noise?dependency=5", outputs=[(11, "output", 1)]),
+             output_node(20, 100, 10, 11)]
+    return package([graph(identifier, nodes, outputs=[(100, "basecolor", "baseColor")])],
+                   dependencies=[(5, "sbs://white_noise.sbs")])

@@ -143,7 +143,9 @@ def run_add(args) -> int:
             continue
         bar.close()
         approx = f", {added['passthrough']} node(s) passed through" if added["passthrough"] else ""
-        print(f"{added['name']}: {added['status']} ({added['nodes']} nodes, {added['params']} params{approx}) "
+        finer = (f", seen from {added['supersample']}x finer renders: its look depends on its output size"
+                 if added["supersample"] > 1 else "")
+        print(f"{added['name']}: {added['status']} ({added['nodes']} nodes, {added['params']} params{approx}{finer}) "
               f"in {added['seconds']:.1f}s", flush=True)
     print(f"library add: {len(files) - refused} of {len(files)} file(s) in the user library")
     return 2 if refused else 0

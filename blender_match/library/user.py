@@ -93,11 +93,13 @@ def _checked_thumbnail(graph, sbs: Path) -> torch.Tensor:
     return image.clamp(0, 1)
 
 
-def add_entry(sbs, name: str | None = None, graph_name: str | None = None, overwrite: bool = False) -> dict:
+def add_entry(sbs, name: str | None = None, graph_name: str | None = None, overwrite: bool = False,
+              measure=None) -> dict:
     """Add one graph of the .sbs file ``sbs`` (its material graph unless ``graph_name``) to the
     user library as ``name`` (default ``entry_name(sbs)``); its metadata (as ``library_entry``
-    reads it). LibraryError, naming the file, when it cannot be added; the library is unchanged
-    then."""
+    reads it), with what ``measure(graph)`` returns (a dict) when given: the layers above record
+    what they measure of the graph in the same write. LibraryError, naming the file, when it
+    cannot be added; the library is unchanged then."""
     sbs = Path(sbs).expanduser().resolve()
     if not sbs.is_file():
         raise LibraryError(f"{sbs}: no such file")
@@ -114,7 +116,7 @@ def add_entry(sbs, name: str | None = None, graph_name: str | None = None, overw
     meta = {"name": name, "file": f"{name}/{sbs.name}", "description": f"{report['graph']} from {sbs.name}",
             "graph": report["graph"], "origin": str(sbs), "sha256": file_sha256(sbs),
             "nodes_passthrough": report["nodes_passthrough"], **graph_summary(graph),
-            **sample_ranges(graph, {}, {}, name)}
+            **sample_ranges(graph, {}, {}, name), **(measure(graph) if measure is not None else {})}
     graphs = user_library_dir() / "graphs"
     graphs.mkdir(parents=True, exist_ok=True)
     with tempfile.TemporaryDirectory(dir=graphs, prefix=f".adding-{name}-") as tmp:

@@ -9,7 +9,10 @@ graph's own defaults and 64 samples. The defaults are the look the file's author
 move every optimisable parameter at once (±15% of its range around its authored value), and over
 hundreds of parameters they can all land far from it (docs/matching.md). The parameter predictor,
 a longer training, is left to ``blender-match train --graph NAME``; the bank alone ranks a graph
-and proposes its start.
+and proposes its start. A new graph's size dependence is measured as it is added: a graph that
+looks different at 128 px than at a match's 512 brought down is rendered that finely for its bank
+and its ranking (``selection.bank.measured_supersample``); an entry added before this was measured
+is added again.
 """
 from __future__ import annotations
 
@@ -18,7 +21,9 @@ from pathlib import Path
 
 from ..library import LibraryError
 from ..library.user import add_entry, entry_name, file_sha256, user_entry
-from ..selection.bank import bank_is_current, build_bank
+from ..selection.bank import SUPERSAMPLE_KEY, bank_is_current, build_bank, measured_supersample
+from ..selection.descriptor import DESCRIPTOR_SIZE
+from .options import PHOTO_SIZE
 
 
 def bank_batch(device) -> int:
@@ -26,6 +31,13 @@ def bank_batch(device) -> int:
     most a quarter of the time and can triple the peak memory of a large production graph (a
     laptop adding a folder overnight must not run out of it; docs/matching.md); eight elsewhere."""
     return 1 if str(device).split(":")[0] == "cpu" else 8
+
+
+def _measure(device):
+    """What ``add_entry`` records of a new graph: how finely selection renders it
+    (``selection.bank.measured_supersample``, against a match's own size)."""
+    factor = PHOTO_SIZE // DESCRIPTOR_SIZE
+    return lambda graph: {SUPERSAMPLE_KEY: measured_supersample(graph.to(device), factor, device)}
 
 
 def sbs_files(path) -> list[Path]:
@@ -43,19 +55,22 @@ def sbs_files(path) -> list[Path]:
 def add_sbs(sbs, *, name: str | None = None, graph_name: str | None = None, overwrite: bool = False,
             device="cpu", progress=None) -> dict:
     """Add ``sbs`` to the user library and build its bank; {"name", "status" ("added", "up to date"
-    or "bank rebuilt"), "nodes", "params", "seconds"}. ``progress(done, total)`` follows the bank's
+    or "bank rebuilt"), "nodes", "params", "passthrough", "supersample" (``selection.bank``),
+    "seconds"}. ``progress(done, total)`` follows the bank's
     samples. LibraryError (one line naming the file) when it cannot be added."""
     start = time.perf_counter()
     sbs = Path(sbs).expanduser().resolve()
     name = name or entry_name(sbs)
     entry = user_entry(name)
-    if (entry is not None and not overwrite and sbs.is_file() and entry.get("sha256") == file_sha256(sbs)
-            and graph_name in (None, entry.get("graph"))):
+    same = (entry is not None and sbs.is_file() and entry.get("sha256") == file_sha256(sbs)
+            and graph_name in (None, entry.get("graph")))
+    if entry is not None and same and not overwrite and SUPERSAMPLE_KEY in entry:
         status = "up to date" if bank_is_current(name) else "bank rebuilt"
-    else:
-        entry = add_entry(sbs, name, graph_name, overwrite=overwrite)
+    else:  # new, replaced, or added by a version that did not measure the graph's size dependence
+        entry = add_entry(sbs, name, graph_name, overwrite=overwrite or same, measure=_measure(device))
         status = "added"
     if status != "up to date":
         build_bank(name, device=device, progress=progress, batch=bank_batch(device), with_defaults=True)
     return {"name": name, "status": status, "nodes": entry["nodes"], "params": entry["params_optimizable"],
-            "passthrough": entry.get("nodes_passthrough", 0), "seconds": time.perf_counter() - start}
+            "passthrough": entry.get("nodes_passthrough", 0), "supersample": entry.get(SUPERSAMPLE_KEY, 1),
+            "seconds": time.perf_counter() - start}

@@ -19,7 +19,16 @@ descriptor kind and the file's ``format``; and the render size and seed. ``load_
 the descriptors decoded, as ``descriptors`` (N, D) float32.
 
 This module also holds what the bank and the predictor's training share: the models folder,
-the staleness hash, parameter vectors of samples and rendering + describing them.
+the staleness hash, parameter vectors of samples and rendering + describing them, and how finely a
+graph is rendered to be described (``supersample``): a graph is rendered at the description's size
+times its ``SUPERSAMPLE_KEY`` (1 unless its metadata says otherwise) and brought down. Most graphs
+look the same rendered at 128 px as rendered at a match's 512 and brought down to 128: their
+structure is drawn relative to the texture. Some production graphs are not: a grain a pixel wide at
+every output size (a Substance white noise through levels) is a contrasty pixel noise at 128 and a
+soft tone at 512 brought down, so described from 128-px renders such a graph is not even
+shortlisted for a photo of itself. ``library add`` measures this at the graph's defaults
+(``measured_supersample``) and records the factor; the bank, the predictor's examples and the
+ranking all render the graph that finely (docs/matching.md).
 """
 from __future__ import annotations
 
@@ -30,6 +39,7 @@ from pathlib import Path
 
 import torch
 
+from ..diffmat.optim import resize_square
 from ..diffmat.render import render_maps
 from ..diffmat.revision import RENDER_REVISION
 from ..library import (
@@ -48,6 +58,13 @@ BANK_SIZE = 64
 BANK_SEED = 0
 BANK_SUFFIX = ".bank.pt"
 BANK_FORMAT = 2  # raised when the file's layout changes: older files are stale
+SUPERSAMPLE_KEY = "selection_supersample"  # a graph's metadata: its render size over the description's
+# A graph is rendered finer for selection when its look at the description's size and brought down
+# from a match's size differ by more than SIZE_DEPENDENCE times what another noise seed changes, at
+# least SEED_SPREAD_FLOOR: the low end of that seed spread over 100 public production graphs, whose
+# median is 0.27 in ``descriptor_distance`` units (docs/matching.md).
+SIZE_DEPENDENCE = 2.0
+SEED_SPREAD_FLOOR = 0.2
 
 
 def models_dir(path, name: str) -> Path:
@@ -111,13 +128,34 @@ class SampleSpace:
         return torch.where(self.mask, (theta + noise).clamp(0, 1), theta)
 
 
-def render_images(graph, thetas: torch.Tensor, seed: int, size: int) -> torch.Tensor:
-    """Flash renders (N, 3, size, size) of normalised parameter vectors (N, P), graph seed ``seed``."""
+def supersample(name: str) -> int:
+    """How many times the description's size library graph ``name`` is rendered at for selection
+    (its metadata's ``SUPERSAMPLE_KEY``; 1 when it has none)."""
+    return int(library_entry(name).get(SUPERSAMPLE_KEY, 1))
+
+
+def render_images(graph, thetas: torch.Tensor, seed: int, size: int, factor: int = 1) -> torch.Tensor:
+    """Flash renders (N, 3, size, size) of normalised parameter vectors (N, P), graph seed ``seed``:
+    rendered at ``factor`` x ``size`` and brought down to ``size`` (antialiased) when ``factor`` > 1."""
     with torch.no_grad():
-        images = render_maps(graph(size=size, seed=seed, theta=thetas))
+        images = render_maps(graph(size=size * factor, seed=seed, theta=thetas)).clamp(0, 1)
     if images.shape[0] != thetas.shape[0]:
         images = images.expand(thetas.shape[0], -1, -1, -1)
-    return images.clamp(0, 1)
+    return resize_square(images, size)
+
+
+def measured_supersample(graph, factor: int, device="cpu") -> int:
+    """``factor`` when the graph (at its own parameters) described from a render ``factor`` times
+    the description's size, brought down, differs from its plain render's description by more than
+    ``SIZE_DEPENDENCE`` times what another noise seed changes (that change counted as at least
+    ``SEED_SPREAD_FLOOR``, so that a graph without noise is not flagged for a trifle); else 1."""
+    theta = graph.get_vector()[None].to(device)
+    plain, other_seed, fine = (describe(render_images(graph, theta, seed, DESCRIPTOR_SIZE, f), device)
+                               for seed, f in ((0, 1), (1, 1), (0, factor)))
+    by_size = float(descriptor_distance(plain, fine)[0, 0])
+    by_seed = max(float(descriptor_distance(plain, other_seed)[0, 0]), SEED_SPREAD_FLOOR)
+    graph.clear_cache()
+    return factor if by_size > SIZE_DEPENDENCE * by_seed else 1
 
 
 def describe(images: torch.Tensor, device="cpu", size: int = DESCRIPTOR_SIZE) -> torch.Tensor:
@@ -130,16 +168,18 @@ DEFAULTS_INDEX = -1  # a bank row's sample index when the row is the graph's own
 
 def build_bank(name: str, n: int = BANK_SIZE, size: int = DESCRIPTOR_SIZE, seed: int = BANK_SEED,
                directory=None, device="cpu", progress=None, batch: int = 8, with_defaults: bool = False) -> Path:
-    """Render and describe samples 0..n-1 of a library graph and write its bank file;
-    ``with_defaults`` puts the graph's own defaults first (index ``DEFAULTS_INDEX``).
+    """Render (``supersample`` times finer, brought down) and describe at ``size`` samples 0..n-1
+    of a library graph and write its bank file; ``with_defaults`` puts the graph's own defaults
+    first (index ``DEFAULTS_INDEX``).
     ``progress(done, total)`` after every batch."""
     space = SampleSpace(name)
     graph = space.graph.to(device)
+    factor = supersample(name)
     indices = ([DEFAULTS_INDEX] if with_defaults else []) + list(range(n))
     thetas = torch.stack([space.default.clone() if k == DEFAULTS_INDEX else space.vector(k) for k in indices])
     descriptors = []
     for start in range(0, len(indices), batch):
-        images = render_images(graph, thetas[start:start + batch].to(device), seed, size)
+        images = render_images(graph, thetas[start:start + batch].to(device), seed, size, factor)
         descriptors.append(describe(images, device, size))
         if progress is not None:
             progress(min(len(indices), start + batch), len(indices))

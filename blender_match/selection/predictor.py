@@ -60,6 +60,7 @@ from .bank import (
     models_dir,
     render_images,
     save_torch,
+    supersample,
     write_bank,
 )
 from .descriptor import DESCRIPTOR_DIM, DESCRIPTOR_KIND, DESCRIPTOR_SIZE, shared_vgg
@@ -188,6 +189,7 @@ def _theta(space: SampleSpace, name: str, k: int, jitter: bool) -> torch.Tensor:
 def _generate(space, plan, data, checkpoint, device, progress, cancel, batch=8):
     """Render and describe the examples of ``plan`` not yet in ``data`` (checkpointed per batch)."""
     graph = space.graph
+    factor = supersample(space.name)
     done = len(data["seeds"])
     while done < len(plan):
         if cancel is not None and cancel():
@@ -199,7 +201,7 @@ def _generate(space, plan, data, checkpoint, device, progress, cancel, batch=8):
         while start < len(group):  # one render per run of examples sharing a graph seed
             seed = group[start][1]
             end = next((i for i in range(start, len(group)) if group[i][1] != seed), len(group))
-            images.append(render_images(graph, thetas[start:end].to(device), seed, DESCRIPTOR_SIZE))
+            images.append(render_images(graph, thetas[start:end].to(device), seed, DESCRIPTOR_SIZE, factor))
             start = end
         images = torch.cat(images)
         data["thetas"] = torch.cat([data["thetas"], thetas])

@@ -5,7 +5,8 @@
 cost below grows with the shortlist, not with the library. For each of them, a candidate parameter
 vector (the predictor's, the bank's nearest sample's, or with both models those two and the graph's
 own defaults, as a named graph's fit chooses its start: ``start.choose_start``; the best kept) is
-rendered at 128 px and scored by the fit's own style loss (Gram descriptor at 128) against the
+rendered at 128 px (finer and brought down for a graph whose look depends on its output size:
+``bank.supersample``) and scored by the fit's own style loss (Gram descriptor at 128) against the
 photo, after the photo's exposure and white balance are given to it: the per-channel gain on its
 base colour that the match's own calibration would solve (``calibration.proposal_gains``), each
 stop of it costing a little (``correction_cost``). Without the gain a graph whose sampled colours
@@ -29,7 +30,7 @@ from ..diffmat.optim import resize_square
 from ..diffmat.render import render_maps
 from ..errors import BlenderMatchError, Cancelled, OptionError
 from ..library import MODELS_DIR, library_entry, library_names, load_library_graph, user_library_dir
-from .bank import bank_is_current, current_bank, nearest
+from .bank import bank_is_current, current_bank, nearest, supersample
 from .descriptor import DESCRIPTOR_SIZE, compact_descriptor, shared_vgg
 from .index import selection_index
 from .predictor import load_predictor, predictor_is_current
@@ -189,11 +190,12 @@ def rank_graphs(photo: torch.Tensor, method: str = "both", *, seed: int = 0, dev
         if not proposals:
             continue
         thetas = torch.stack([t for _, t in proposals]).to(device)
+        size = RANK_SIZE * supersample(name)
         with torch.no_grad():
             maps = {u: m.expand(thetas.shape[0], -1, -1, -1)
-                    for u, m in graph(size=RANK_SIZE, seed=seed, theta=thetas).items()}
-            gains = proposal_gains(maps, small)
-            image = render_maps(with_gain(maps, gains)).clamp(0, 1)
+                    for u, m in graph(size=size, seed=seed, theta=thetas).items()}
+            gains = proposal_gains(maps, resize_square(photo, size))
+            image = resize_square(render_maps(with_gain(maps, gains)).clamp(0, 1), RANK_SIZE)
             losses = style_loss(gram(image, (RANK_SIZE,)), target)
             losses = (losses * torch.exp(correction_cost(gains))).cpu()
         best = best_finite(losses)

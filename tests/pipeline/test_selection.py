@@ -4,11 +4,12 @@ from __future__ import annotations
 import json
 
 import pytest
+import sbs_snippets as W
 import torch
 
 from blender_match.diffmat.calibration import CLIP_LEVEL
 from blender_match.diffmat.descriptor import TextureDescriptor
-from blender_match.diffmat.optim import TargetLoss
+from blender_match.diffmat.optim import TargetLoss, resize_square
 from blender_match.diffmat.render import FlashCamera, linear_to_srgb, render_maps, srgb_to_linear
 from blender_match.errors import OptionError
 from blender_match.library import builtin_names, library_names, load_library_graph
@@ -22,6 +23,7 @@ from blender_match.selection.bank import (
     build_bank,
     describe,
     load_bank,
+    measured_supersample,
     nearest,
     render_images,
 )
@@ -47,6 +49,7 @@ from blender_match.selection.rank import (
     order_by_simplicity,
     rank_graphs,
 )
+from blender_match.translator import translate
 from blender_match.vocabulary import GAIN
 
 
@@ -93,6 +96,19 @@ def test_a_user_bank_holds_the_graphs_own_defaults_first(tmp_path):
     assert torch.equal(bank["thetas"][0], space.default) and torch.equal(bank["thetas"][2], space.vector(1))
     image = render_images(space.graph, space.default[None], bank["seed"], 64)
     assert nearest(bank, describe(image, size=64))[0]["index"] == DEFAULTS_INDEX
+
+
+def test_a_graph_whose_look_depends_on_its_output_size_is_described_from_finer_renders(tmp_path):
+    (tmp_path / "grain.sbs").write_text(W.white_noise_package())
+    grain = translate(tmp_path / "grain.sbs").graph
+    theta = grain.get_vector()[None]
+    fine = render_images(grain, theta, 0, 32, factor=4)
+    assert fine.shape[-1] == 32
+    assert torch.equal(fine, resize_square(render_maps(grain(size=128, seed=0, theta=theta)).clamp(0, 1), 32))
+    assert fine.std() < 0.5 * render_images(grain, theta, 0, 32).std()  # the pixel grain averages out
+    assert measured_supersample(grain, 4) == 4
+    space = SampleSpace("plaster")  # drawn relative to the texture: as it looks at 512, brought down
+    assert measured_supersample(space.graph, 4) == 1
 
 
 def test_bank_nearest_neighbour_finds_the_sample_itself(tmp_path):
