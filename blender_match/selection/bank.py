@@ -128,10 +128,10 @@ class SampleSpace:
         return torch.where(self.mask, (theta + noise).clamp(0, 1), theta)
 
 
-def supersample(name: str) -> int:
-    """How many times the description's size library graph ``name`` is rendered at for selection
-    (its metadata's ``SUPERSAMPLE_KEY``; 1 when it has none)."""
-    return int(library_entry(name).get(SUPERSAMPLE_KEY, 1))
+def supersample(entry: dict) -> int:
+    """How many times the description's size the library graph of metadata ``entry``
+    (``library_entry``) is rendered at for selection (its ``SUPERSAMPLE_KEY``; 1 when it has none)."""
+    return int(entry.get(SUPERSAMPLE_KEY, 1))
 
 
 def render_images(graph, thetas: torch.Tensor, seed: int, size: int, factor: int = 1) -> torch.Tensor:
@@ -174,7 +174,7 @@ def build_bank(name: str, n: int = BANK_SIZE, size: int = DESCRIPTOR_SIZE, seed:
     ``progress(done, total)`` after every batch."""
     space = SampleSpace(name)
     graph = space.graph.to(device)
-    factor = supersample(name)
+    factor = supersample(library_entry(name))
     indices = ([DEFAULTS_INDEX] if with_defaults else []) + list(range(n))
     thetas = torch.stack([space.default.clone() if k == DEFAULTS_INDEX else space.vector(k) for k in indices])
     descriptors = []

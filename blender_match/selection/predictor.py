@@ -48,6 +48,7 @@ from torch import nn
 from ..diffmat.descriptor import TextureDescriptor, style_loss
 from ..diffmat.render import render_maps
 from ..errors import Cancelled, OptionError
+from ..library import library_entry
 from ..safe_files import write_atomic
 from .bank import (
     BANK_SEED,
@@ -189,7 +190,7 @@ def _theta(space: SampleSpace, name: str, k: int, jitter: bool) -> torch.Tensor:
 def _generate(space, plan, data, checkpoint, device, progress, cancel, batch=8):
     """Render and describe the examples of ``plan`` not yet in ``data`` (checkpointed per batch)."""
     graph = space.graph
-    factor = supersample(space.name)
+    factor = supersample(library_entry(space.name))
     done = len(data["seeds"])
     while done < len(plan):
         if cancel is not None and cancel():

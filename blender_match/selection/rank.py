@@ -190,7 +190,8 @@ def rank_graphs(photo: torch.Tensor, method: str = "both", *, seed: int = 0, dev
         if not proposals:
             continue
         thetas = torch.stack([t for _, t in proposals]).to(device)
-        size = RANK_SIZE * supersample(name)
+        entry = library_entry(name)
+        size = RANK_SIZE * supersample(entry)
         with torch.no_grad():
             maps = {u: m.expand(thetas.shape[0], -1, -1, -1)
                     for u, m in graph(size=size, seed=seed, theta=thetas).items()}
@@ -199,7 +200,6 @@ def rank_graphs(photo: torch.Tensor, method: str = "both", *, seed: int = 0, dev
             losses = style_loss(gram(image, (RANK_SIZE,)), target)
             losses = (losses * torch.exp(correction_cost(gains))).cpu()
         best = best_finite(losses)
-        entry = library_entry(name)
         entries.append({"graph": name, "distance": float(losses[best]), "theta": proposals[best][1].cpu(),
                         "start": proposals[best][0], "gain": [round(float(g), 4) for g in gains[best]],
                         "nodes": entry["nodes"], "params": entry["params_optimizable"]})
