@@ -14,7 +14,6 @@ speed_accuracy.png and convergence.png.
 """
 from __future__ import annotations
 
-import json
 import math
 import os
 import platform
@@ -35,6 +34,7 @@ from .accuracy_metrics import CLASSIFICATION_RULE, Scorer, classify, finite
 from .accuracy_report import markdown
 from .accuracy_targets import STRESS_KINDS, Target, graph_for_photo, real, real_photos, stress, synthetic
 from .charts import convergence_chart, speed_accuracy_chart
+from .results_files import write_json_and_markdown
 
 FIT_SEED = 0
 
@@ -295,8 +295,7 @@ def _std(values):
 def write_outputs(out: Path, result: dict) -> list[Path]:
     """results.json, results.md and the two charts in ``out``."""
     out.mkdir(parents=True, exist_ok=True)
-    (out / "results.json").write_text(json.dumps(result, indent=1, default=_json_default) + "\n")
-    (out / "results.md").write_text(markdown(result))
+    write_json_and_markdown(out, result, markdown(result), default=_json_default)
     per_method = result["curves"]
     panels = [("descriptor loss / default's (mean over main targets)",
                {m: [(p["seconds"], p["relative_loss"]) for p in pts] for m, pts in per_method.items()}),

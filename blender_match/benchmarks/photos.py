@@ -65,6 +65,7 @@ from ..vocabulary import QUALITY_NAMES
 from .accuracy_targets import photos_dir
 from .image_distances import colour_distance, patch_distance
 from .markdown import table
+from .results_files import write_json_and_markdown
 
 CATEGORIES_FILE = Path(__file__).with_name("photo_categories.json")
 SUFFIXES = (".jpg", ".jpeg", ".png")
@@ -247,7 +248,7 @@ def sheet_png(entries: list[tuple]) -> bytes:
 
 def run(device: str = "cpu", photos=None, quick: bool = False, quality: str | None = None, out: Path | None = None,
         limit: int | None = None, iterations: int | None = None, candidates: int = AUTO_CANDIDATES,
-        zoom: float | None = 1.0, lighting: bool = True, **_ignored) -> list[dict]:
+        zoom: float | None = 1.0, lighting: bool = True) -> list[dict]:
     """Match every photo of ``photos`` (module docstring): the per-photo rows then the "all" row;
     [] with one line on stderr when the folder holds no photo. ``limit``: the first photos only."""
     quality = quality or ("draft" if quick else "balanced")
@@ -296,8 +297,7 @@ def run(device: str = "cpu", photos=None, quick: bool = False, quality: str | No
                   "photo_size": PHOTO_SIZE, "device": str(torch_device), "threads": torch.get_num_threads(),
                   "categories": {c: families.get(c, []) for c in sorted({r["category"] for r in rows})},
                   "labelled": {r["photo"]: r["category"] for r in rows if r["photo"] in labels}}
-        write_atomic(out / "results.json", json.dumps({"config": config, "rows": rows, "summary": summary},
-                                                      indent=1).encode("utf-8"), overwrite=True)
-        write_atomic(out / "results.md", markdown(rows, summary, config).encode("utf-8"), overwrite=True)
+        write_json_and_markdown(out, {"config": config, "rows": rows, "summary": summary},
+                                markdown(rows, summary, config))
         write_atomic(out / "sheet.png", sheet_png(entries), overwrite=True)
     return [{c: r[c] for c in COLUMNS} | {"top3": ", ".join(r["top3"])} for r in rows] + [summary_row(summary)]

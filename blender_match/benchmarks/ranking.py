@@ -19,7 +19,6 @@ rows with every ranked graph's distance and start) and ``results.md``.
 """
 from __future__ import annotations
 
-import json
 import math
 import sys
 import time
@@ -28,7 +27,6 @@ from typing import Any
 
 from ..photo import load_photo
 from ..pipeline import PHOTO_SIZE, resolve_device
-from ..safe_files import write_atomic
 from ..selection import rank_graphs, shared_vgg
 from .accuracy_targets import photos_dir
 from .markdown import table
@@ -41,6 +39,7 @@ from .photos import (
     load_photo_labels,
     photo_category,
 )
+from .results_files import write_json_and_markdown
 
 COLUMNS = ("photo", "category", "first", "top3", "family_rank", "seconds", "error")
 
@@ -62,7 +61,7 @@ def summarise(rows: list[dict], seconds: float) -> dict:
             "family_top3": share(3), "family_ranked": share(math.inf), "total_seconds": round(seconds, 1)}
 
 
-def run(device: str = "cpu", photos=None, out: Path | None = None, **_ignored) -> list[dict]:
+def run(device: str = "cpu", photos=None, out: Path | None = None) -> list[dict]:
     """Rank the library for every photo (module docstring): the per-photo rows then the "all"
     row; [] with one line on stderr when no folder holds a photo."""
     folders = [Path(photos)] if photos is not None else [default_photos(), photos_dir()]
@@ -98,15 +97,10 @@ def run(device: str = "cpu", photos=None, out: Path | None = None, **_ignored) -
               flush=True)
     summary = summarise(rows, time.perf_counter() - started)
     if out is not None:
-        out = Path(out)
-        out.mkdir(parents=True, exist_ok=True)
         config = {"photos_dirs": [str(f) for f in folders], "seed": SEED, "photo_size": PHOTO_SIZE,
                   "device": str(torch_device)}
-        write_atomic(out / "results.json", json.dumps({"config": config, "rows": rows, "summary": summary},
-                                                      indent=1).encode("utf-8"), overwrite=True)
-        write_atomic(out / "results.md", "\n\n".join(["# bench ranking", table([summary], list(summary)),
-                                                      "## Per photo", table(rows, COLUMNS)]).encode("utf-8") + b"\n",
-                     overwrite=True)
+        write_json_and_markdown(out, {"config": config, "rows": rows, "summary": summary}, "\n\n".join(
+            ["# bench ranking", table([summary], list(summary)), "## Per photo", table(rows, COLUMNS)]))
     return [{c: r[c] for c in COLUMNS} | {"top3": ", ".join(r["top3"])} for r in rows] + [
         {"photo": "all", "category": f"{summary['photos']} photos", "first": f"{summary['family_first']:.0%}",
          "top3": f"{summary['family_top3']:.0%} in the top 3", "family_rank":

@@ -32,7 +32,6 @@ that does not load, a device error) is listed under the config's ``failed`` and 
 """
 from __future__ import annotations
 
-import json
 import statistics
 import sys
 import time
@@ -45,12 +44,12 @@ from ..diffmat.optim import final_stage_loss
 from ..diffmat.render import render_maps
 from ..library import apply_params, builtin_names, load_library_graph, sample_params
 from ..pipeline import finish_calibration, fit_named_graph, match_schedule, photo_loss, resolve_device
-from ..safe_files import write_atomic
 from ..vocabulary import QUALITY_NAMES
 from .accuracy_metrics import NOVEL_LIGHT, image_rmse, make_truth, map_rmse
 from .charts import recovery_chart
 from .image_distances import patch_distance
 from .markdown import table
+from .results_files import write_json_and_markdown
 
 TARGET_K0 = 300_000
 TRUTH_SEED = 7771
@@ -180,7 +179,7 @@ def markdown(summary: list[dict], maps: list[dict], rows: list[dict], config: di
 
 def run(device: str = "cpu", graphs=None, quick: bool = False, quality: str | None = None, out: Path | None = None,
         size: int | None = None, targets: int = 1, iterations: int | None = None, zoom: float | None = 1.0,
-        lighting: bool = True, **_ignored) -> list[dict]:
+        lighting: bool = True) -> list[dict]:
     torch_device = resolve_device(device)
     names = list(graphs or (QUICK_GRAPHS if quick else builtin_names()))
     presets = tuple(quality.split(",")) if quality else PRESETS  # "draft,balanced": those two
@@ -214,8 +213,7 @@ def write_results(out: Path, rows: list[dict], presets, config: dict):
     """results.json, results.md and (once a target has a row) recovery.png in ``out``."""
     out.mkdir(parents=True, exist_ok=True)
     summary, maps = summarise(rows, presets), per_map(rows, presets)
-    write_atomic(out / "results.json", json.dumps({"config": config, "summary": summary, "per_map": maps,
-                                                   "rows": rows}, indent=1).encode("utf-8"), overwrite=True)
-    write_atomic(out / "results.md", markdown(summary, maps, rows, config).encode("utf-8"), overwrite=True)
+    write_json_and_markdown(out, {"config": config, "summary": summary, "per_map": maps, "rows": rows},
+                            markdown(summary, maps, rows, config))
     if rows:  # nothing to chart while every target so far has failed
         recovery_chart(out / "recovery.png", rows, presets, MEASURES)

@@ -81,8 +81,7 @@ class _GraphTally:
 
 
 def run(device: str = "cpu", graphs=None, targets: int = 2, fit_targets: int = 1, iterations: int = 40,
-        quality: str = "draft", target_size: int = 256, method: str = "both", quick: bool = False,
-        **_ignored) -> list[dict]:
+        quality: str = "draft", target_size: int = 256, method: str = "both", quick: bool = False) -> list[dict]:
     if quick:
         targets, fit_targets, iterations = 1, 1, 30
     torch_device = resolve_device(device)

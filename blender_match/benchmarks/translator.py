@@ -7,7 +7,8 @@ passed through), the optimisable parameters, the evaluation time of the translat
 and whether every map it renders is finite. A file that does not translate or render is a row with
 its one-line error, and the run goes on: a sweep over a folder of production files is the point.
 The last row counts the files, those translated and those rendered. Default files: the real
-packages in ``../shared/data/sbs``."""
+packages in ``../shared/data/sbs``. With ``out``: ``results.json`` (the files given, every row and
+the count) and ``results.md``."""
 from __future__ import annotations
 
 from pathlib import Path
@@ -17,7 +18,9 @@ import torch
 from ..errors import BlenderMatchError
 from ..pipeline.user_library import sbs_files
 from ..translator import Translation, translate
+from .markdown import table
 from .measure import best_of
+from .results_files import write_json_and_markdown
 
 DEFAULT_DIR = Path(__file__).resolve().parents[2].parent / "shared" / "data" / "sbs"
 SIZE = 512
@@ -52,12 +55,13 @@ def _render(path: Path, result: Translation, device: str, row: dict):
         raise BlenderMatchError(f"{path}: maps not finite: {', '.join(bad)}")
 
 
-def run(device: str = "cpu", files: list[Path] | None = None, repeats: int = 3) -> list[dict]:
-    files = [f for given in files for f in sbs_files(given)] if files else sorted(DEFAULT_DIR.glob("*.sbs"))
-    if not files:
-        raise FileNotFoundError(f"{DEFAULT_DIR}: no .sbs files to translate (pass --files)")
+def run(device: str = "cpu", files: list[Path] | None = None, repeats: int = 3, out: Path | None = None) -> list[dict]:
+    given = [Path(f) for f in files] if files else [DEFAULT_DIR]
+    paths = [f for g in files for f in sbs_files(g)] if files else sorted(DEFAULT_DIR.glob("*.sbs"))
+    if not paths:
+        raise FileNotFoundError(f"{', '.join(map(str, given))}: no .sbs files to translate (pass --files)")
     rows = []
-    for path in files:
+    for path in paths:
         row: dict = {"file": path.name}
         try:
             _render(path, _translate(path, repeats, row), device, row)
@@ -72,4 +76,10 @@ def run(device: str = "cpu", files: list[Path] | None = None, repeats: int = 3) 
     summary = dict.fromkeys(columns, "")
     summary |= {"file": f"all: {len(rows)} files", "nodes": f"{translated} translated",
                 "rendered": f"{rendered} rendered", "error": f"{len(rows) - rendered} failed"}
+    if out is not None:
+        count = {"files": len(rows), "translated": translated, "rendered": rendered}
+        write_json_and_markdown(out, {"config": {"files": [str(g) for g in given], "size": SIZE, "device": device,
+                                                 "repeats": repeats}, "summary": count, "rows": rows},
+                                "\n\n".join(["# bench translator", table([count], list(count)), "## Per file",
+                                             table(rows, list(columns))]))
     return rows + [summary]

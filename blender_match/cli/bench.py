@@ -3,14 +3,20 @@ from __future__ import annotations
 
 import argparse
 import importlib
+import inspect
 import json
 from pathlib import Path
 
 import torch
 
+from ..errors import OptionError
 from .match import zoom_argument
 
 SUITES = ("nodes", "translator", "library", "match", "accuracy", "selection", "recovery", "photos", "ranking")
+# the suite options, by the keyword a suite's ``run`` takes each as (the rest go to every suite)
+OPTION_FLAGS = {"files": "--files", "graphs": "--graphs", "paper_iterations": "--paper-iterations",
+                "quality": "--quality", "quick": "--quick", "photos": "--photos", "iterations": "--iterations",
+                "candidates": "--candidates", "zoom": "--zoom", "lighting": "--no-lighting", "out": "--out"}
 
 
 def add_parser(sub):
@@ -42,6 +48,24 @@ def add_parser(sub):
     p.set_defaults(run=run)
 
 
+def suite_options(run_function) -> set[str]:
+    """The keyword names of the options a suite's ``run`` takes."""
+    return {name for name, p in inspect.signature(run_function).parameters.items()
+            if p.kind in (p.POSITIONAL_OR_KEYWORD, p.KEYWORD_ONLY)}
+
+
+def check_options(what: str, given, taken: set[str]):
+    """OptionError naming the options ``given`` (keyword names) that suite ``what`` does not take,
+    each of which would otherwise be lost without a word or stop the run with a traceback, and
+    the ones it does take."""
+    refused = [OPTION_FLAGS[name] for name in given if name not in taken]
+    if refused:
+        accepted = [flag for name, flag in OPTION_FLAGS.items() if name in taken]
+        raise OptionError(f"bench {what} does not take {', '.join(refused)}; it takes "
+                          + (", ".join(accepted) if accepted else "none of the suites' options")
+                          + " (and --device, --threads, --json)")
+
+
 def print_table(rows: list[dict]):
     cols = list(rows[0])
     cells = [[f"{r[c]:.3f}" if isinstance(r[c], float) else str(r[c]) for c in cols] for r in rows]
@@ -64,6 +88,7 @@ def run(args) -> int:
     extra = {k: v for k, v in options.items() if v is not None}
     if hasattr(args, "zoom"):  # "auto" is None to the suite, so a --zoom not given is absent instead
         extra["zoom"] = args.zoom
+    check_options(args.what, extra, suite_options(module.run))
     rows = module.run(device=args.device, **extra)
     if args.json:
         print(json.dumps(rows, indent=1))
