@@ -294,7 +294,6 @@ def _std(values):
 
 def write_outputs(out: Path, result: dict) -> list[Path]:
     """results.json, results.md and the two charts in ``out``."""
-    out.mkdir(parents=True, exist_ok=True)
     write_json_and_markdown(out, result, markdown(result), default=_json_default)
     per_method = result["curves"]
     panels = [("descriptor loss / default's (mean over main targets)",

@@ -211,7 +211,6 @@ def run(device: str = "cpu", graphs=None, quick: bool = False, quality: str | No
 
 def write_results(out: Path, rows: list[dict], presets, config: dict):
     """results.json, results.md and (once a target has a row) recovery.png in ``out``."""
-    out.mkdir(parents=True, exist_ok=True)
     summary, maps = summarise(rows, presets), per_map(rows, presets)
     write_json_and_markdown(out, {"config": config, "summary": summary, "per_map": maps, "rows": rows},
                             markdown(summary, maps, rows, config))

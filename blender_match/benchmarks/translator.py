@@ -59,7 +59,8 @@ def run(device: str = "cpu", files: list[Path] | None = None, repeats: int = 3, 
     given = [Path(f) for f in files] if files else [DEFAULT_DIR]
     paths = [f for g in files for f in sbs_files(g)] if files else sorted(DEFAULT_DIR.glob("*.sbs"))
     if not paths:
-        raise FileNotFoundError(f"{', '.join(map(str, given))}: no .sbs files to translate (pass --files)")
+        raise FileNotFoundError(f"{', '.join(map(str, given))}: no .sbs files to translate"
+                                + ("" if files else " (pass --files)"))
     rows = []
     for path in paths:
         row: dict = {"file": path.name}
