@@ -43,7 +43,8 @@ def add_parser(sub):
     p.add_argument("--no-lighting", dest="lighting", action="store_false", default=None,
                    help="fit under the ideal flash, not the photo's solved falloff (photos, recovery)")
     p.add_argument("--out", type=Path,
-                   help="folder for results.json, results.md and charts (accuracy, recovery, photos, ranking)")
+                   help="folder for results.json, results.md and charts "
+                   "(accuracy, recovery, photos, ranking, translator)")
     p.add_argument("--json", action="store_true", help="print rows as JSON")
     p.set_defaults(run=run)
 
