@@ -3,6 +3,7 @@ one line instead of dropping it or stopping with a traceback."""
 from __future__ import annotations
 
 import importlib
+import json
 
 import pytest
 
@@ -31,3 +32,12 @@ def test_an_option_the_suite_does_not_take_is_refused_in_one_line(argv, refused,
     assert len(err.splitlines()) == 1, err
     assert f"bench {argv[0]} does not take {refused};" in err and listed in err
     assert not (tmp_path / "out").exists()
+
+
+def test_bench_translator_out_writes_its_results(tmp_path, shared_dir):
+    """The report that stopped with a traceback: ``bench translator --files … --out DIR``."""
+    package = sorted((shared_dir / "data" / "sbs").glob("*.sbs"))[0]
+    assert main(["bench", "translator", "--files", str(package), "--out", str(tmp_path / "out")]) == 0
+    saved = json.loads((tmp_path / "out" / "results.json").read_text(encoding="utf-8"))
+    assert saved["summary"] == {"files": 1, "translated": 1, "rendered": 1}
+    assert (tmp_path / "out" / "results.md").is_file()
