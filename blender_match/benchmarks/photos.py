@@ -291,7 +291,6 @@ def run(device: str = "cpu", photos=None, quick: bool = False, quality: str | No
     summary = summarise(rows, time.perf_counter() - started, listed_misses)
     if out is not None:
         out = Path(out)
-        out.mkdir(parents=True, exist_ok=True)
         config = {"photos_dir": str(folder), "quality": quality, "iterations": iterations, "k": options.candidates,
                   "seed": SEED, "zoom": "auto" if zoom is None else zoom, "lighting": lighting,
                   "photo_size": PHOTO_SIZE, "device": str(torch_device), "threads": torch.get_num_threads(),

@@ -20,7 +20,9 @@ OPTION_FLAGS = {"files": "--files", "graphs": "--graphs", "paper_iterations": "-
 
 
 def add_parser(sub):
-    p = sub.add_parser("bench", help="run benchmarks and print figures")
+    # a suite option (``OPTION_FLAGS``) is in the parsed arguments only when given: what a suite
+    # is passed is what the user asked for, and its own defaults stand for the rest
+    p = sub.add_parser("bench", help="run benchmarks and print figures", argument_default=argparse.SUPPRESS)
     p.add_argument("what", nargs="?", choices=SUITES, default=None,
                    help="which benchmark (default: accuracy with --out, else nodes)")
     p.add_argument("--device", default="cpu", help="cpu, cuda or mps")
@@ -38,14 +40,14 @@ def add_parser(sub):
                    help="iterations of each fit, rescaling the quality preset (photos, recovery, selection)")
     p.add_argument("--candidates", type=int,
                    help="graphs automatic matching fits per photo (photos; default: match's default)")
-    p.add_argument("--zoom", type=zoom_argument, default=argparse.SUPPRESS, metavar="auto|Z",
+    p.add_argument("--zoom", type=zoom_argument, metavar="auto|Z",
                    help="texture periods across the photo (photos, recovery; default 1; auto: searched)")
-    p.add_argument("--no-lighting", dest="lighting", action="store_false", default=None,
+    p.add_argument("--no-lighting", dest="lighting", action="store_false",
                    help="fit under the ideal flash, not the photo's solved falloff (photos, recovery)")
     p.add_argument("--out", type=Path,
                    help="folder for results.json, results.md and charts "
                    "(accuracy, recovery, photos, ranking, translator)")
-    p.add_argument("--json", action="store_true", help="print rows as JSON")
+    p.add_argument("--json", action="store_true", default=False, help="print rows as JSON")
     p.set_defaults(run=run)
 
 
@@ -80,15 +82,10 @@ def print_table(rows: list[dict]):
 def run(args) -> int:
     if args.threads:
         torch.set_num_threads(args.threads)
-    args.what = args.what or ("accuracy" if args.out else "nodes")
+    args.what = args.what or ("accuracy" if getattr(args, "out", None) else "nodes")
     # the suite is chosen by name at run time: SUITES are the modules of blender_match.benchmarks
     module = importlib.import_module(f"blender_match.benchmarks.{args.what}")
-    options = {"files": args.files, "graphs": args.graphs, "paper_iterations": args.paper_iterations,
-               "quality": args.quality, "quick": args.quick or None, "out": args.out, "photos": args.photos,
-               "iterations": args.iterations, "candidates": args.candidates, "lighting": args.lighting}
-    extra = {k: v for k, v in options.items() if v is not None}
-    if hasattr(args, "zoom"):  # "auto" is None to the suite, so a --zoom not given is absent instead
-        extra["zoom"] = args.zoom
+    extra = {name: getattr(args, name) for name in OPTION_FLAGS if hasattr(args, name)}  # "--zoom auto": None
     check_options(args.what, extra, suite_options(module.run))
     rows = module.run(device=args.device, **extra)
     if args.json:
