@@ -147,6 +147,7 @@ def test_schedules_are_well_formed():
 
 
 def first_steps(optimizer_for, gradient: torch.Tensor) -> torch.Tensor:
+    """How far one step of ``optimizer_for(theta)`` moves each parameter, from 0, for ``gradient``."""
     theta = torch.zeros(1, gradient.numel(), requires_grad=True)
     optimizer = optimizer_for(theta)
     theta.grad = gradient.reshape(1, -1).clone()
@@ -157,7 +158,8 @@ def first_steps(optimizer_for, gradient: torch.Tensor) -> torch.Tensor:
 def test_a_parameter_the_loss_barely_sees_steps_in_proportion_to_its_gradient():
     """Adam with its own epsilon moves a parameter whose gradient is a thousandth of a typical
     start's loss (0.02) as far as one the loss settles, so the fit wanders where the photo says
-    nothing; with the fit's epsilon the first still takes about Adam's step, the second a sliver."""
+    nothing; with the fit's epsilon the settled one still takes about Adam's step, the barely seen
+    one a sliver."""
     lr, loss = 0.04, 0.02
     gradient = torch.tensor([5 * loss, 1e-3 * loss])
     plain = first_steps(lambda theta: torch.optim.Adam([theta], lr=lr), gradient)
