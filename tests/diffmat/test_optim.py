@@ -17,7 +17,6 @@ from blender_match.diffmat.optim import (
     Schedule,
     Stage,
     TargetLoss,
-    adam,
     fit,
     quarter_crop,
 )
@@ -144,29 +143,6 @@ def test_schedules_are_well_formed():
     assert all(s.iterations >= 1 for s in scaled.stages) and scaled.iterations <= 5
     with pytest.raises(DiffMatError, match="at least 1"):
         SMALL.scaled(0)
-
-
-def first_steps(optimizer_for, gradient: torch.Tensor) -> torch.Tensor:
-    """How far one step of ``optimizer_for(theta)`` moves each parameter, from 0, for ``gradient``."""
-    theta = torch.zeros(1, gradient.numel(), requires_grad=True)
-    optimizer = optimizer_for(theta)
-    theta.grad = gradient.reshape(1, -1).clone()
-    optimizer.step()
-    return theta.detach()[0].abs()
-
-
-def test_a_parameter_the_loss_barely_sees_steps_in_proportion_to_its_gradient():
-    """Adam with its own epsilon moves a parameter whose gradient is a thousandth of a typical
-    start's loss (0.02) as far as one the loss settles, so the fit wanders where the photo says
-    nothing; with the fit's epsilon the settled one still takes about Adam's step, the barely seen
-    one a sliver."""
-    lr, loss = 0.04, 0.02
-    gradient = torch.tensor([5 * loss, 1e-3 * loss])
-    plain = first_steps(lambda theta: torch.optim.Adam([theta], lr=lr), gradient)
-    assert plain[1] > 0.9 * lr and plain[0] > 0.9 * lr
-    damped = first_steps(lambda theta: adam(theta, lr), gradient)
-    assert damped[0] > 0.8 * lr
-    assert damped[1] < 0.01 * lr
 
 
 def test_every_preset_renders_at_the_photo_size():
