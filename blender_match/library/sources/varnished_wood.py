@@ -11,7 +11,10 @@ Structure
   to walnut, reddened by the stain towards mahogany); the fibres streak it; the pores darker
   still; a cloud noise gives the board's slow variation of tone.
 - Height: the varnish levels the surface, so the relief is shallow: the pores a little sunk and
-  the latewood lines a hair lower than the earlywood; normal from it (OpenGL, inverted Y).
+  the latewood lines a hair lower than the earlywood; normal from it (OpenGL, inverted Y), faint
+  (``relief`` 0.08 by default, sampled up to 0.25). The flash's highlight lies on the coat, not
+  on the wood, so on a real board it is one clean spot with the grain seen through it; a deeper
+  relief under a low roughness broke it into a glitter of pores.
 - Roughness: the coat's, low and almost even; the pores, which the varnish fills less, a little
   rougher. Metallic 0.
 
@@ -43,7 +46,7 @@ def build() -> SbsGraph:
     g.expose("grain_contrast", 0.55, min=0.0, max=1.0)
     g.expose("grain_density", 0.5, min=0.0, max=1.0)
     g.expose("roughness", 0.25, min=0.03, max=0.8)
-    g.expose("relief", 0.25, min=0.0, max=1.0)
+    g.expose("relief", 0.08, min=0.0, max=1.0)
     g.expose("stain", 0.3, min=0.0, max=1.0)
 
     # ---- grain -----------------------------------------------------------------------------------
@@ -72,13 +75,13 @@ def build() -> SbsGraph:
                   "wood_fibred", blendingmode=SOFT_LIGHT, opacitymult=0.5)
     color_over(g, "basecolor", "pore_color", (0.35, 0.30, 0.27, 1.0), "wood_clouded", mask="pores",
                blendingmode=MULTIPLY, opacitymult=0.6)
-    g.bind("basecolor", "opacitymult", lerp(0.2, 0.9, get("grain_contrast")).graph())
+    g.bind("basecolor", "opacitymult", lerp(0.15, 0.7, get("grain_contrast")).graph())
 
     # ---- height ----------------------------------------------------------------------------------
     g.add("height_grain", "histogram_range", {"input": "grain"}, range=0.3, position=0.6)
     g.add("pore_depth", "uniform", colorswitch=False, outputcolor=(0.0, 0.0, 0.0, 1.0))
     g.add("height", "blend", {"source": "pore_depth", "destination": "height_grain", "opacity": "pores"},
-          blendingmode=COPY, opacitymult=0.5)
+          blendingmode=COPY, opacitymult=0.15)
 
     # ---- normal, roughness and metallic ----------------------------------------------------------
     dielectric_tail(g, "height", 2.0, lerp(0.0, 5.0, get("relief")), "pores", 0.1, 0.18)
@@ -95,7 +98,7 @@ SAMPLE_RANGES = {
     "exposed.grain_contrast": (0.2, 0.95),
     "exposed.grain_density": (0.1, 1.0),
     "exposed.roughness": (0.1, 0.5),
-    "exposed.relief": (0.0, 0.7),
+    "exposed.relief": (0.0, 0.25),
     "lines_wavy.intensity": (0.5, 6.0),
     "wood_fibred.opacitymult": (0.3, 1.0),
     "rings_sharp.position": (0.55, 0.85),
