@@ -160,7 +160,7 @@ def save_predictor(model: ParamPredictor, name: str, meta: dict, directory=None,
     state = {k: (v.detach().to(dtype) if v.is_floating_point() else v.detach()).cpu().clone()
              for k, v in model.state_dict().items()}
     save_torch(state, weights)
-    write_atomic(meta_path, json.dumps(meta, indent=1).encode("utf-8"), overwrite=True)
+    write_atomic(meta_path, (json.dumps(meta, indent=1) + "\n").encode("utf-8"), overwrite=True)
 
 
 def masked_l1(pred: torch.Tensor, truth: torch.Tensor, mask: torch.Tensor) -> torch.Tensor:
