@@ -6,7 +6,7 @@ from __future__ import annotations
 
 from ..translator.runtime import SbsGraph
 from ..vocabulary import ANISOTROPY, ANISOTROPY_ANGLE, AUTHORED_USAGES
-from .expressions import Expr, const, get, gray4, minimum, vector
+from .expressions import Expr, const, get, gray4, lerp, minimum, vector
 
 # Substance's blending-mode codes (the blend node's ``blendingmode``)
 COPY, ADD, SUBTRACT, MULTIPLY, ADD_SUB, MAX, MIN, SWITCH, DIVIDE, OVERLAY, SCREEN, SOFT_LIGHT = range(12)
@@ -93,6 +93,22 @@ def gradient_over(g: SbsGraph, name: str, tones_name: str, source: str, stops, d
         inputs["opacity"] = mask
     g.add(name, "blend", inputs, **blend)
     return name
+
+
+def dust_specks(g: SbsGraph, amount: Expr, seeds: tuple[int, int]) -> str:
+    """Dust on a smooth coat: sparse white-noise dots, slightly blurred, plus a few larger lint
+    specks (a thresholded spot noise), both more numerous with the expression ``amount`` (0 none,
+    1 a dusty surface); returns the name of their mask, ``dust_mask`` (nodes ``dust_noise``,
+    ``dust_dots``, ``dust_soft``, ``lint_noise``, ``lint``; ``seeds``: the two noises')."""
+    g.add("dust_noise", "white_noise", seed=seeds[0])
+    g.add("dust_dots", "histogram_scan", {"input_1": "dust_noise"}, contrast=0.9)
+    g.bind("dust_dots", "position", lerp(0.0, 0.005, amount).graph())
+    g.add("dust_soft", "blur", {"input1": "dust_dots"}, intensity=0.6)
+    g.add("lint_noise", "gaussian_spots_1", seed=seeds[1], scale=8.0)
+    g.add("lint", "histogram_scan", {"input_1": "lint_noise"}, contrast=0.85)
+    g.bind("lint", "position", lerp(0.0, 0.004, amount).graph())
+    g.add("dust_mask", "blend", {"source": "lint", "destination": "dust_soft"}, blendingmode=ADD, opacitymult=0.8)
+    return "dust_mask"
 
 
 def grain_tones(g: SbsGraph, prefix: str, color: Expr, mask: str, dark: float, light: float, dark_rgb,

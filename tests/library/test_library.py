@@ -237,3 +237,38 @@ def test_unlisted_parameters_vary_around_their_value():
     assert default_spread(0.5, 0.0, 1.0) == pytest.approx(0.15)  # mid-range: 15% of the range
     assert default_spread(0.04, 0.0, 20.0) == pytest.approx(0.22)  # a small warp stays small (not +-3)
     assert default_spread(0.0, -1.0, 1.0) == pytest.approx(0.02)  # a rotation of 0 barely turns
+
+
+def test_painted_metal_spans_an_intact_coat_to_a_chipped_one():
+    """A painted sheet is most often intact: at wear 0 no bare metal shows, at high wear a good
+    part of it does, and the sampled variants (what the bank and the predictor learn from) hold
+    both intact and chipped coats."""
+    graph = load_library_graph("painted_metal")
+    bare = {}
+    for wear in (0.0, 0.9):
+        apply_params(graph, {"exposed.wear": wear, "exposed.scratches": 0.0}, "test")
+        with torch.no_grad():
+            bare[wear] = graph(size=128)["metallic"].mean().item()
+    assert bare[0.0] < 1e-3 < 0.2 < bare[0.9]
+    sampled = []
+    for k in range(16):
+        apply_params(graph, sample_params("painted_metal", k), "sample")
+        with torch.no_grad():
+            metallic = graph(size=64)["metallic"]
+        assert metallic.min().item() == 0.0  # the paint is a dielectric in every variant
+        sampled.append((metallic > 0.5).float().mean().item())
+    assert sum(m < 0.005 for m in sampled) >= 3 and sum(m > 0.05 for m in sampled) >= 3, sampled
+
+
+def test_dust_lies_on_a_coat_as_light_rough_specks():
+    """``dust`` adds specks to the painted metal's coat: lighter and rougher than the paint where
+    they lie, none at 0."""
+    graph = load_library_graph("painted_metal")
+    maps = {}
+    for dust in (0.0, 1.0):
+        apply_params(graph, {"exposed.wear": 0.0, "exposed.scratches": 0.0, "exposed.dust": dust,
+                             "exposed.paint_color": [0.05, 0.05, 0.05]}, "test")
+        with torch.no_grad():
+            maps[dust] = graph(size=256)
+    assert maps[0.0]["roughness"].max().item() < 0.6 < maps[1.0]["roughness"].max().item()
+    assert maps[0.0]["basecolor"][:, :3].max().item() < 0.2 < maps[1.0]["basecolor"][:, :3].max().item()

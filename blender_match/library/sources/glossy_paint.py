@@ -31,6 +31,7 @@ from blender_match.library.authoring import (
     SOFT_LIGHT,
     color_over,
     constant_map,
+    dust_specks,
     gradient_over,
     set_material_outputs,
 )
@@ -70,14 +71,7 @@ def build() -> SbsGraph:
     g.bind("peel_height", "range", lerp(0.0, 0.5, get("orange_peel")).graph())
 
     # ---- dust --------------------------------------------------------------------------------
-    g.add("dust_noise", "white_noise", seed=76)
-    g.add("dust_dots", "histogram_scan", {"input_1": "dust_noise"}, contrast=0.9)
-    g.bind("dust_dots", "position", lerp(0.0, 0.005, get("dust")).graph())
-    g.add("dust_soft", "blur", {"input1": "dust_dots"}, intensity=0.6)
-    g.add("lint_noise", "gaussian_spots_1", seed=77, scale=8.0)
-    g.add("lint", "histogram_scan", {"input_1": "lint_noise"}, contrast=0.85)
-    g.bind("lint", "position", lerp(0.0, 0.004, get("dust")).graph())
-    g.add("dust_mask", "blend", {"source": "lint", "destination": "dust_soft"}, blendingmode=ADD, opacitymult=0.8)
+    dust_specks(g, get("dust"), seeds=(76, 77))
 
     # ---- height and normal -------------------------------------------------------------------
     g.add("paint_relief", "blend", {"source": "peel_height", "destination": "streak_height"},

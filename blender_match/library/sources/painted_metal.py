@@ -1,17 +1,22 @@
-"""Painted steel: a coat of enamel paint, chipped and scratched down to the bare metal.
+"""Painted steel: a coat of enamel paint, from an intact coated sheet to one chipped and scratched
+down to the bare metal.
 
-Structure: the wear mask is the union of chips (a grunge map and a fractal sum, histogram-scanned
-by the wear slider) and scratches (sparse white-noise dots smeared in two directions by directional
-blurs); the paint mask is its inverse, slightly blurred so chip edges have a rim. The paint gets a
-low-frequency tone variation (clouds) and a fine orange-peel relief (Perlin noise); the bare metal
-gets a brushed streak pattern. Base colour, roughness and metallic switch between paint and metal
-by the paint mask; height = paint thickness + orange peel + metal streaks; normal from height.
+Structure: the wear mask is the union of chips (a grunge map and a fractal sum, squeezed below 0.9
+and histogram-scanned by the square of the wear: none at wear 0 and almost none below 0.4, so that
+the sampled variants include the intact coats most painted sheets show) and scratches (sparse
+white-noise dots smeared in two directions by directional blurs); the paint mask is its inverse,
+slightly blurred so chip edges have a rim. The paint gets a low-frequency tone variation (clouds)
+and a fine orange-peel relief (Perlin noise); the bare metal gets a brushed streak pattern. Base
+colour, roughness and metallic switch between paint and metal by the paint mask; height = paint
+thickness + orange peel + metal streaks; normal from height. Dust lies on top
+(``authoring.dust_specks``): light grey, rough specks a hair above the coat, which a dark glossy
+sheet shows as bright dots around the flash.
 
 Exposed parameters: ``paint_color`` (sRGB), ``paint_roughness``, ``metal_color`` (sRGB tint of the
 bare steel), ``metal_roughness``, ``wear`` (how much paint is gone), ``scratches`` (scratch
-amount), ``normal_intensity``.
+amount), ``dust`` (how many dust specks), ``normal_intensity``.
 """
-from blender_match.library.authoring import color_over, set_material_outputs
+from blender_match.library.authoring import ADD, color_over, dust_specks, set_material_outputs
 from blender_match.library.expressions import get, vector
 from blender_match.translator.runtime import SbsGraph
 
@@ -22,8 +27,9 @@ def build() -> SbsGraph:
     g.expose("paint_roughness", 0.42, min=0.1, max=0.9)
     g.expose("metal_color", [0.62, 0.62, 0.64], min=0.0, max=1.0)
     g.expose("metal_roughness", 0.32, min=0.05, max=0.8)
-    g.expose("wear", 0.3, min=0.0, max=1.0)
+    g.expose("wear", 0.55, min=0.0, max=1.0)
     g.expose("scratches", 0.5, min=0.0, max=1.0)
+    g.expose("dust", 0.2, min=0.0, max=1.0)
     g.expose("normal_intensity", 1.5, min=0.0, max=5.0)
 
     # chips
@@ -31,8 +37,11 @@ def build() -> SbsGraph:
     g.add("chip_fractal", "fractal_sum_2", seed=4, scale=3.0, roughness=0.55)
     g.add("chip_noise", "blend", {"source": "chip_fractal", "destination": "chip_grunge"},
           blendingmode=9, opacitymult=0.6)
-    g.add("chips", "histogram_scan", {"input_1": "chip_noise"}, contrast=0.82)
-    g.bind("chips", "position", (0.05 + 0.5 * get("wear")).graph())
+    # the noise squeezed below 0.9, so that a small wear scans past all of it (its brightest
+    # patches would otherwise chip the coat at any wear above 0)
+    g.add("chip_level", "histogram_range", {"input": "chip_noise"}, range=0.9, position=0.45)
+    g.add("chips", "histogram_scan", {"input_1": "chip_level"}, contrast=0.82)
+    g.bind("chips", "position", (0.6 * get("wear") * get("wear")).graph())
 
     # scratches
     g.add("scratch_dots", "white_noise", seed=29)
@@ -65,14 +74,18 @@ def build() -> SbsGraph:
           colors=[0.86, 0.86, 0.87, 1.0, 1.0, 1.0, 1.0, 1.0])
     g.add("metal_color", "blend", {"source": "metal_streak_color", "destination": "metal_base"}, blendingmode=3)
 
-    g.add("basecolor", "blend", {"source": "paint_color", "destination": "metal_color", "opacity": "paint_mask"})
+    g.add("coat_color", "blend", {"source": "paint_color", "destination": "metal_color", "opacity": "paint_mask"})
+    dust = dust_specks(g, get("dust"), seeds=(31, 37))
+    color_over(g, "basecolor", "dust_color", [0.72, 0.71, 0.68, 1.0], "coat_color", mask=dust, opacitymult=0.85)
 
     # roughness
     g.add("metal_rough", "histogram_range", {"input": "metal_streaks"}, range=0.12)
     g.bind("metal_rough", "position", get("metal_roughness").graph())
     g.add("paint_rough", "histogram_range", {"input": "paint_clouds"}, range=0.1)
     g.bind("paint_rough", "position", get("paint_roughness").graph())
-    g.add("roughness", "blend", {"source": "paint_rough", "destination": "metal_rough", "opacity": "paint_mask"})
+    g.add("coat_rough", "blend", {"source": "paint_rough", "destination": "metal_rough", "opacity": "paint_mask"})
+    g.add("dust_rough", "uniform", colorswitch=False, outputcolor=[0.85, 0.85, 0.85, 1.0])
+    g.add("roughness", "blend", {"source": "dust_rough", "destination": "coat_rough", "opacity": dust})
 
     # metallic
     g.add("metal_one", "uniform", colorswitch=False, outputcolor=[1.0, 1.0, 1.0, 1.0])
@@ -83,8 +96,9 @@ def build() -> SbsGraph:
     g.add("paint_height", "histogram_range", {"input": "paint_mask"}, range=0.3, position=0.55)
     g.add("peel_height", "blend", {"source": "orange_peel", "destination": "paint_height",
                                    "opacity": "paint_mask"}, blendingmode=4, opacitymult=0.06)
-    g.add("height", "blend", {"source": "metal_streaks", "destination": "peel_height",
-                              "opacity": "wear_mask"}, blendingmode=4, opacitymult=0.04)
+    g.add("coat_height", "blend", {"source": "metal_streaks", "destination": "peel_height",
+                                   "opacity": "wear_mask"}, blendingmode=4, opacitymult=0.04)
+    g.add("height", "blend", {"source": dust, "destination": "coat_height"}, blendingmode=ADD, opacitymult=0.08)
     g.add("normal", "normal", {"input1": "height"})
     g.bind("normal", "intensity", get("normal_intensity").graph())
 
@@ -96,16 +110,19 @@ FAMILY = "metal"
 
 SAMPLE_RANGES = {
     "exposed.paint_color": ([0.02, 0.02, 0.02], [0.9, 0.9, 0.9]),
-    "exposed.paint_roughness": (0.25, 0.7),
+    "exposed.paint_roughness": (0.12, 0.7),
     "exposed.metal_color": ([0.5, 0.5, 0.5], [0.75, 0.75, 0.77]),
     "exposed.metal_roughness": (0.15, 0.55),
-    "exposed.wear": (0.1, 0.8),
+    "exposed.wear": (0.0, 0.9),
+    "exposed.dust": (0.0, 0.8),
     "exposed.scratches": (0.0, 1.0),
     "exposed.normal_intensity": (0.5, 3.0),
     "chip_grunge.scale": (2.0, 5.0),
     "chip_noise.opacitymult": (0.2, 0.9),
     "chips.contrast": (0.6, 0.95),
+    "peel_height.opacitymult": (0.0, 0.15),
     "scratch_a.mblurangle": (0.0, 0.25),
     "metal_one.outputcolor": (1.0, 1.0),
     "paint_zero.outputcolor": (0.0, 0.0),
+    "metallic.opacitymult": (1.0, 1.0),  # paint is a dielectric: no sample tints it metallic
 }
