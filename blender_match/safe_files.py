@@ -2,6 +2,7 @@
 half-written file) and never over an existing file unless the caller says so."""
 from __future__ import annotations
 
+import json
 import os
 import tempfile
 from pathlib import Path
@@ -35,3 +36,9 @@ def write_atomic(path: Path, data: bytes, overwrite: bool = False):
     except BaseException:
         Path(tmp).unlink(missing_ok=True)
         raise
+
+
+def write_json_atomic(path: Path, data, overwrite: bool = False, default=None):
+    """``data`` as indented JSON text ending in a newline, written by ``write_atomic``
+    (``default`` as ``json.dumps`` takes it)."""
+    write_atomic(path, (json.dumps(data, indent=1, default=default) + "\n").encode("utf-8"), overwrite=overwrite)

@@ -26,7 +26,7 @@ import torch
 
 from ..diffmat.errors import DiffMatError
 from ..image_files import write_png
-from ..safe_files import write_atomic
+from ..safe_files import write_json_atomic
 from ..translator import TranslatorError, load_sbs_graph, local_dependencies
 from .build import graph_summary, sample_ranges
 from .catalog import NAME, LibraryError, builtin_names, user_library_dir, user_names
@@ -126,7 +126,7 @@ def add_entry(sbs, name: str | None = None, graph_name: str | None = None, overw
         remove_entry(name, missing_ok=True)
         staged.rename(graphs / name)
     write_png(graphs / f"{name}.png", thumbnail, overwrite=True)
-    write_atomic(graphs / f"{name}.json", (json.dumps(meta, indent=1) + "\n").encode("utf-8"), overwrite=True)
+    write_json_atomic(graphs / f"{name}.json", meta, overwrite=True)
     return meta
 
 

@@ -49,7 +49,7 @@ from ..diffmat.descriptor import TextureDescriptor, style_loss
 from ..diffmat.render import render_maps
 from ..errors import Cancelled, OptionError
 from ..library import library_entry
-from ..safe_files import write_atomic
+from ..safe_files import write_json_atomic
 from .bank import (
     BANK_SEED,
     BANK_SIZE,
@@ -160,7 +160,7 @@ def save_predictor(model: ParamPredictor, name: str, meta: dict, directory=None,
     state = {k: (v.detach().to(dtype) if v.is_floating_point() else v.detach()).cpu().clone()
              for k, v in model.state_dict().items()}
     save_torch(state, weights)
-    write_atomic(meta_path, (json.dumps(meta, indent=1) + "\n").encode("utf-8"), overwrite=True)
+    write_json_atomic(meta_path, meta, overwrite=True)
 
 
 def masked_l1(pred: torch.Tensor, truth: torch.Tensor, mask: torch.Tensor) -> torch.Tensor:
