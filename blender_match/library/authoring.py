@@ -95,6 +95,15 @@ def gradient_over(g: SbsGraph, name: str, tones_name: str, source: str, stops, d
     return name
 
 
+# what the dust of ``dust_specks`` looks like where it lies on a coat: a light grey laid over the
+# base colour at this opacity, this roughness (a matte speck on a glossy coat), and this share of
+# the mask added to the height (a hair above the coat)
+DUST_COLOR = (0.72, 0.71, 0.68, 1.0)
+DUST_OPACITY = 0.85
+DUST_ROUGHNESS = (0.85, 0.85, 0.85, 1.0)
+DUST_RELIEF = 0.08
+
+
 def dust_specks(g: SbsGraph, amount: Expr, seeds: tuple[int, int]) -> str:
     """Dust on a smooth coat: sparse white-noise dots, slightly blurred, plus a few larger lint
     specks (a thresholded spot noise), both more numerous with the expression ``amount`` (0 none,

@@ -26,6 +26,10 @@ from __future__ import annotations
 from blender_match.library.authoring import (
     ADD,
     ADD_SUB,
+    DUST_COLOR,
+    DUST_OPACITY,
+    DUST_RELIEF,
+    DUST_ROUGHNESS,
     MULTIPLY,
     OVERLAY,
     SOFT_LIGHT,
@@ -77,7 +81,7 @@ def build() -> SbsGraph:
     g.add("paint_relief", "blend", {"source": "peel_height", "destination": "streak_height"},
           blendingmode=ADD_SUB, opacitymult=1.0)
     g.add("height", "blend", {"source": "dust_mask", "destination": "paint_relief"},
-          blendingmode=ADD, opacitymult=0.08)
+          blendingmode=ADD, opacitymult=DUST_RELIEF)
     g.add("normal", "normal", {"input1": "height"}, intensity=1.2, inversedy=True)
 
     # ---- colour ------------------------------------------------------------------------------
@@ -88,8 +92,8 @@ def build() -> SbsGraph:
                   blendingmode=MULTIPLY, opacitymult=0.8)
     gradient_over(g, "paint_mottled", "mottle", "wander", [(0.0, (0.45, 0.45, 0.45)), (1.0, (0.55, 0.55, 0.55))],
                   "paint_pooled", blendingmode=SOFT_LIGHT, opacitymult=0.5)
-    color_over(g, "basecolor", "dust_color", (0.72, 0.71, 0.68, 1.0), "paint_mottled", mask="dust_mask",
-               opacitymult=0.85)
+    color_over(g, "basecolor", "dust_color", DUST_COLOR, "paint_mottled", mask="dust_mask",
+               opacitymult=DUST_OPACITY)
 
     # ---- roughness and metallic ---------------------------------------------------------------
     g.add("smudges_noise", "grunge_map_002", seed=78, scale=2.0)
@@ -98,7 +102,7 @@ def build() -> SbsGraph:
     g.bind("rough_base", "position", get("roughness").graph())
     g.add("rough_smudged", "blend", {"source": "smudges", "destination": "rough_base"},
           blendingmode=ADD, opacitymult=0.08)
-    g.add("dust_rough", "uniform", colorswitch=False, outputcolor=(0.85, 0.85, 0.85, 1.0))
+    g.add("dust_rough", "uniform", colorswitch=False, outputcolor=DUST_ROUGHNESS)
     g.add("roughness", "blend", {"source": "dust_rough", "destination": "rough_smudged",
                                  "opacity": "dust_mask"})
     constant_map(g, "metallic", 0.0)

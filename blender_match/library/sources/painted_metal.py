@@ -16,7 +16,16 @@ Exposed parameters: ``paint_color`` (sRGB), ``paint_roughness``, ``metal_color``
 bare steel), ``metal_roughness``, ``wear`` (how much paint is gone), ``scratches`` (scratch
 amount), ``dust`` (how many dust specks), ``normal_intensity``.
 """
-from blender_match.library.authoring import ADD, color_over, dust_specks, set_material_outputs
+from blender_match.library.authoring import (
+    ADD,
+    DUST_COLOR,
+    DUST_OPACITY,
+    DUST_RELIEF,
+    DUST_ROUGHNESS,
+    color_over,
+    dust_specks,
+    set_material_outputs,
+)
 from blender_match.library.expressions import get, vector
 from blender_match.translator.runtime import SbsGraph
 
@@ -76,7 +85,7 @@ def build() -> SbsGraph:
 
     g.add("coat_color", "blend", {"source": "paint_color", "destination": "metal_color", "opacity": "paint_mask"})
     dust = dust_specks(g, get("dust"), seeds=(31, 37))
-    color_over(g, "basecolor", "dust_color", [0.72, 0.71, 0.68, 1.0], "coat_color", mask=dust, opacitymult=0.85)
+    color_over(g, "basecolor", "dust_color", DUST_COLOR, "coat_color", mask=dust, opacitymult=DUST_OPACITY)
 
     # roughness
     g.add("metal_rough", "histogram_range", {"input": "metal_streaks"}, range=0.12)
@@ -84,7 +93,7 @@ def build() -> SbsGraph:
     g.add("paint_rough", "histogram_range", {"input": "paint_clouds"}, range=0.1)
     g.bind("paint_rough", "position", get("paint_roughness").graph())
     g.add("coat_rough", "blend", {"source": "paint_rough", "destination": "metal_rough", "opacity": "paint_mask"})
-    g.add("dust_rough", "uniform", colorswitch=False, outputcolor=[0.85, 0.85, 0.85, 1.0])
+    g.add("dust_rough", "uniform", colorswitch=False, outputcolor=DUST_ROUGHNESS)
     g.add("roughness", "blend", {"source": "dust_rough", "destination": "coat_rough", "opacity": dust})
 
     # metallic
@@ -98,7 +107,7 @@ def build() -> SbsGraph:
                                    "opacity": "paint_mask"}, blendingmode=4, opacitymult=0.06)
     g.add("coat_height", "blend", {"source": "metal_streaks", "destination": "peel_height",
                                    "opacity": "wear_mask"}, blendingmode=4, opacitymult=0.04)
-    g.add("height", "blend", {"source": dust, "destination": "coat_height"}, blendingmode=ADD, opacitymult=0.08)
+    g.add("height", "blend", {"source": dust, "destination": "coat_height"}, blendingmode=ADD, opacitymult=DUST_RELIEF)
     g.add("normal", "normal", {"input1": "height"})
     g.bind("normal", "intensity", get("normal_intensity").graph())
 
