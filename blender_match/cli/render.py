@@ -22,7 +22,8 @@ from ..image_files import write_png
 from ..library import library_names, sample_params
 from ..material_maps import write_maps
 from ..pipeline import load_graph
-from ..pipeline.result_folder import refuse_existing, write_json
+from ..pipeline.result_folder import refuse_existing
+from ..safe_files import write_json_atomic
 from ..vocabulary import PARAMS_FILE
 
 RENDER_FILE = "render.png"
@@ -63,7 +64,7 @@ def run(args) -> int:
     if args.sample is not None:
         params = sample_params(args.source, args.sample)
         apply_params(graph, params, f"{args.source} sample {args.sample}")
-        write_json(params_path, {"graph": graph.name, "sample": args.sample, "params": params}, args.overwrite)
+        write_json_atomic(params_path, {"graph": graph.name, "sample": args.sample, "params": params}, args.overwrite)
     if args.params:
         load_params(graph, args.params)
     start = time.perf_counter()

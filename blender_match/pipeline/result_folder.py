@@ -9,7 +9,6 @@ maps) and ``report.json``.
 """
 from __future__ import annotations
 
-import json
 from collections.abc import Iterable
 from pathlib import Path
 
@@ -23,7 +22,7 @@ from ..diffmat.render import FlashCamera, render_maps
 from ..errors import BlenderMatchError
 from ..image_files import write_png
 from ..material_maps import to_channels, write_maps
-from ..safe_files import FileWriteError, write_atomic
+from ..safe_files import FileWriteError, write_json_atomic
 from ..vocabulary import ANISOTROPY, AUTHORED_USAGES, COMPARISON_FILE, OUTPUTS, PARAMS_FILE, REPORT_FILE
 from .progress import JobProgress
 
@@ -49,10 +48,6 @@ def check_targets(out_dir, usages: Iterable[str], overwrite: bool, extra: Iterab
     """Refuse, before any work, to replace the files of ``usages``' maps and ``extra`` in ``out_dir``."""
     names = [OUTPUTS[u].file for u in usages if u in OUTPUTS] + list(extra)
     refuse_existing((Path(out_dir) / n for n in names), overwrite)
-
-
-def write_json(path: Path, data: dict, overwrite: bool) -> None:
-    write_atomic(path, json.dumps(data, indent=1).encode("utf-8"), overwrite=overwrite)
 
 
 def evaluate_maps(graph: MaterialGraph, size: int, seed: int) -> dict[str, torch.Tensor]:
@@ -94,12 +89,12 @@ def write_result(graph: MaterialGraph, source: str, out_dir, size: int, seed: in
     maps = {u: m.cpu() for u, m in maps.items()}
     progress.within(0.3)
     written = write_maps(maps, out_dir, overwrite=overwrite)
-    write_json(out_dir / PARAMS_FILE, {"graph": graph.name, "source": source, "seed": seed,
-                                       "params": graph_params(graph)}, overwrite)
+    write_json_atomic(out_dir / PARAMS_FILE, {"graph": graph.name, "source": source, "seed": seed,
+                                              "params": graph_params(graph)}, overwrite)
     write_png(out_dir / COMPARISON_FILE, comparison, overwrite=overwrite)
     progress.stage(None)
     report = {"graph": graph.name, "source": source, "size": size, "seed": seed, "device": str(device),
               **(report_extra or {}), "maps": written, "params_file": PARAMS_FILE,
               "comparison": COMPARISON_FILE, "stages": progress.stage_seconds, "seconds": progress.seconds()}
-    write_json(out_dir / REPORT_FILE, report, overwrite)
+    write_json_atomic(out_dir / REPORT_FILE, report, overwrite)
     return report

@@ -1,5 +1,7 @@
-"""Result folders of a graph with the optional anisotropy maps: written, flat, refused."""
+"""Result folders: a graph with the optional anisotropy maps (written, flat, refused), and the JSON files."""
 from __future__ import annotations
+
+import json
 
 import pytest
 
@@ -7,7 +9,14 @@ from blender_match.library import load_library_graph
 from blender_match.pipeline.progress import RENDER_SHARES, JobProgress
 from blender_match.pipeline.result_folder import COMPARISON_TILE, check_targets, write_result
 from blender_match.safe_files import FileWriteError
-from blender_match.vocabulary import ANISOTROPY, ANISOTROPY_ANGLE, AUTHORED_USAGES, WRITING_MAPS
+from blender_match.vocabulary import (
+    ANISOTROPY,
+    ANISOTROPY_ANGLE,
+    AUTHORED_USAGES,
+    PARAMS_FILE,
+    REPORT_FILE,
+    WRITING_MAPS,
+)
 
 PNG_DEPTH, PNG_COLOR_TYPE, GRAY = 24, 25, 0
 
@@ -29,3 +38,15 @@ def test_an_anisotropic_graph_writes_its_level_and_angle_as_flat_grey_maps(tmp_p
     assert width == COMPARISON_TILE * (2 + len(AUTHORED_USAGES))  # the render, the authored maps, the level
     with pytest.raises(FileWriteError, match="anisotropylevel.png"):
         check_targets(tmp_path, [ANISOTROPY], overwrite=False, extra=())
+
+
+def test_the_params_and_report_files_are_json_text_ending_in_a_newline(tmp_path):
+    """A text file a user opens, diffs or appends to ends its last line (stop 44: they did not)."""
+    job = JobProgress(None, None, RENDER_SHARES)
+    job.stage(WRITING_MAPS)
+    report = write_result(load_library_graph("plaster"), "plaster", tmp_path, 32, 0, "cpu", False, job)
+    for name in (PARAMS_FILE, REPORT_FILE):
+        text = (tmp_path / name).read_text(encoding="utf-8")
+        assert text.endswith("}\n") and not text.endswith("\n\n")
+    assert json.loads((tmp_path / REPORT_FILE).read_text())["graph"] == report["graph"] == "plaster"
+    assert json.loads((tmp_path / PARAMS_FILE).read_text())["graph"] == "plaster"
