@@ -7,10 +7,9 @@ prints a one-line summary. Files are written atomically; existing ones are kept 
 """
 from __future__ import annotations
 
-import json
 from pathlib import Path
 
-from ..safe_files import write_atomic
+from ..safe_files import write_atomic, write_json_atomic
 from ..translator import translate
 
 
@@ -41,7 +40,7 @@ def run(args) -> int:
     write_atomic(program_path, result.program.encode("utf-8"), overwrite=True)
     report = dict(report, program=str(program_path))
     if report_path:
-        write_atomic(report_path, json.dumps(report, indent=2, sort_keys=True).encode("utf-8"), overwrite=True)
+        write_json_atomic(report_path, report, overwrite=True)
     unsupported = ", ".join(f"{k}×{v}" for k, v in report["unsupported"].items()) or "none"
     print(f"{report['graph']}: {report['nodes_translated']}/{report['nodes_total']} nodes translated, "
           f"{report['nodes_passthrough']} pass-through, {report['nodes_pruned']} pruned, "

@@ -15,7 +15,7 @@ from pathlib import Path
 
 import torch
 
-from ..safe_files import write_atomic
+from ..safe_files import write_json_atomic
 from .errors import DiffMatError
 
 
@@ -31,10 +31,11 @@ def graph_params(graph) -> dict[str, float | list[float]]:
     return out
 
 
-def save_params(graph, path: Path, overwrite: bool = False):
-    """Write the graph's parameters to ``path`` (atomically; refuses to replace a file unless asked)."""
-    text = json.dumps({"graph": graph.name, "params": graph_params(graph)}, indent=1)
-    write_atomic(Path(path), text.encode("utf-8"), overwrite=overwrite)
+def save_params(graph, path: Path, overwrite: bool = False, **about):
+    """Write the graph's parameters to ``path`` (atomically; refuses to replace a file unless asked);
+    ``about``: more top-level entries, written between the graph's name and its parameters (a
+    result folder's source and seed; ``load_params`` reads the parameters only)."""
+    write_json_atomic(Path(path), {"graph": graph.name, **about, "params": graph_params(graph)}, overwrite=overwrite)
 
 
 def _check_entry(graph, key: str, value, where: str) -> tuple[str, str, torch.Tensor]:

@@ -17,7 +17,7 @@ import torch
 from ..diffmat import MaterialGraph
 from ..diffmat.calibration import framed_maps
 from ..diffmat.optim import resize_square
-from ..diffmat.params_file import graph_params
+from ..diffmat.params_file import save_params
 from ..diffmat.render import FlashCamera, render_maps
 from ..errors import BlenderMatchError
 from ..image_files import write_png
@@ -89,8 +89,7 @@ def write_result(graph: MaterialGraph, source: str, out_dir, size: int, seed: in
     maps = {u: m.cpu() for u, m in maps.items()}
     progress.within(0.3)
     written = write_maps(maps, out_dir, overwrite=overwrite)
-    write_json_atomic(out_dir / PARAMS_FILE, {"graph": graph.name, "source": source, "seed": seed,
-                                              "params": graph_params(graph)}, overwrite)
+    save_params(graph, out_dir / PARAMS_FILE, overwrite, source=source, seed=seed)
     write_png(out_dir / COMPARISON_FILE, comparison, overwrite=overwrite)
     progress.stage(None)
     report = {"graph": graph.name, "source": source, "size": size, "seed": seed, "device": str(device),

@@ -62,8 +62,9 @@ def test_render_an_sbs_file_and_translate_it(tmp_path, shared_dir, capsys):
     assert (tmp_path / "r" / "basecolor.png").is_file()
     report = tmp_path / "report.json"
     assert main(["translate", str(sbs), "--out", str(tmp_path / "prog"), "--report", str(report)]) == 0
-    data = json.loads(report.read_text())
-    assert data["nodes_translated"] >= 0.9 * data["nodes_total"] > 0
+    text = report.read_text(encoding="utf-8")
+    data = json.loads(text)
+    assert text.endswith("}\n") and data["nodes_translated"] >= 0.9 * data["nodes_total"] > 0
     assert list((tmp_path / "prog").glob("*.py"))
 
 

@@ -23,6 +23,7 @@ def test_round_trip_reproduces_the_maps(tmp_path):
     g = small_graph()
     g.nodes["lv"].set_values(levelinhigh=(0.7, 0.7, 0.7, 1.0))
     save_params(g, tmp_path / "p.json")
+    assert (tmp_path / "p.json").read_text(encoding="utf-8").endswith("}\n")  # a text file ends its line
     with pytest.raises(FileWriteError, match="already exists"):
         save_params(g, tmp_path / "p.json")
     fresh = small_graph()
