@@ -38,7 +38,12 @@ def write_atomic(path: Path, data: bytes, overwrite: bool = False):
         raise
 
 
+def json_text(data, default=None) -> str:
+    """The text of every JSON file the project writes: ``data`` indented by one, ending in a
+    newline (``default`` as ``json.dumps`` takes it)."""
+    return json.dumps(data, indent=1, default=default) + "\n"
+
+
 def write_json_atomic(path: Path, data, overwrite: bool = False, default=None):
-    """``data`` as indented JSON text ending in a newline, written by ``write_atomic``
-    (``default`` as ``json.dumps`` takes it)."""
-    write_atomic(path, (json.dumps(data, indent=1, default=default) + "\n").encode("utf-8"), overwrite=overwrite)
+    """``json_text(data)`` written by ``write_atomic``."""
+    write_atomic(path, json_text(data, default).encode("utf-8"), overwrite=overwrite)

@@ -38,7 +38,7 @@ from pathlib import Path
 
 from ..diffmat.errors import DiffMatError
 from ..errors import BlenderMatchError
-from ..safe_files import write_atomic
+from ..safe_files import json_text, write_atomic
 from ..translator import load_sbs_graph
 from . import FAMILIES, GRAPHS_DIR, build_source, source_module, source_names
 from .sbs_export import export_sbs
@@ -203,7 +203,7 @@ def build_one(name: str) -> tuple[str, str]:
             **graph_summary(translated),
             **sample_ranges(translated, mapping, declared, name, getattr(module, "SAMPLE_TOGETHER", ())),
             "node_names": dict(sorted(mapping.items()))}
-    return text, json.dumps(meta, indent=1) + "\n"
+    return text, json_text(meta)
 
 
 def main(argv: list[str] | None = None) -> int:
