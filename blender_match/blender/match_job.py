@@ -37,7 +37,7 @@ from ..vocabulary import DEFAULT_QUALITY, FITTING, STAGE_TITLES
 from ..worker import client, protocol
 from ..worker.backend_setup import BackendSetup
 from . import addon, parameters
-from .material_builder import assign_material, build_material, fitted_zoom
+from .material_builder import MATCH_ORIGIN, assign_material, build_material, fitted_zoom
 
 JOBS: dict = {}      # scene key -> the scene's running job
 LAST: dict = {}      # scene key -> {"state", "message", "graph", "loss", "seconds", "material", "folder", ...}
@@ -213,8 +213,9 @@ class _SceneJob(_Job):
     """A job that ends in a new material in a scene."""
 
     def __init__(self, worker, *, scene, out_dir: Path, created: list, pack: bool, tiling: float,
-                 object_name: str | None, slot_index: int, temp_files=(), notes=()):
+                 object_name: str | None, slot_index: int, temp_files=(), notes=(), origin: dict | None = None):
         super().__init__(worker)
+        self.origin = dict(origin or {})  # what the match came from, for the material's record
         self.scene_key = addon.scene_key(scene)
         self.scene_name = scene.name
         self.out_dir = Path(out_dir)
@@ -249,7 +250,8 @@ class _SceneJob(_Job):
         """A new material from the result folder (any datablock made before an error is removed)."""
         before_materials, before_images = set(bpy.data.materials), set(bpy.data.images)
         try:
-            material = build_material(self.out_dir, name=name, pack=self.pack, tiling=self.tiling)
+            material = build_material(self.out_dir, name=name, pack=self.pack, tiling=self.tiling,
+                                      origin=self.origin)
             parameters.populate(material)
         except BaseException:
             for image in set(bpy.data.images) - before_images:
@@ -450,8 +452,10 @@ def start_match(context, *, photo=None, image=None, graph="AUTO", size=2048, qua
             Path(tmp).unlink(missing_ok=True)
         raise
     object_name, slot = _target(context)
+    origin = {"photo_image": image.name} if image is not None else {"photo": str(photo)}
+    origin["quality"] = quality
     return MatchJob(worker, scene=scene, out_dir=out_dir, created=created, pack=pack, tiling=tiling,
-                    object_name=object_name, slot_index=slot, temp_files=temp_files, notes=notes)
+                    object_name=object_name, slot_index=slot, temp_files=temp_files, notes=notes, origin=origin)
 
 
 def material_tiling(material, default: float = 1.0) -> float:
@@ -507,9 +511,11 @@ def start_render(context, material, size: int, *, values: dict | None = None, de
         Path(params_file).unlink(missing_ok=True)
         raise
     object_name, slot = _target(context)
+    record = parameters.stored_record(material) or {}
+    origin = {key: record[key] for key in MATCH_ORIGIN if key in record}
     return RenderJob(worker, scene=scene, out_dir=out_dir, created=created, pack=pack,
                      tiling=material_tiling(material), object_name=object_name, slot_index=slot,
-                     temp_files=[params_file], notes=notes, old_material=material.name, kind=kind)
+                     temp_files=[params_file], notes=notes, old_material=material.name, kind=kind, origin=origin)
 
 
 def worker_python(context) -> str:

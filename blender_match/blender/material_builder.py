@@ -35,7 +35,10 @@ turns nothing. Without the level map, or with a flat level of 0, neither the tan
 image is added.
 
 What re-rendering needs without the photo (graph, fitted parameters as JSON text, size, loss,
-folder) is stored on the material as the ``"blender_match"`` custom property.
+folder) is stored on the material as the ``"blender_match"`` custom property, with what the match
+came from when the caller gives it (``origin``: the photo file or image datablock, the quality)
+and, for an automatic match, the graphs its ranking put next after the kept one
+(``"alternatives"``): the ranking's near-ties, which the panel offers to match instead.
 
 bpy is imported inside the functions, so this module imports without Blender; ``read_report``
 and ``srgb_to_linear`` are shared with ``export_presets``.
@@ -61,6 +64,12 @@ from ..vocabulary import (
 )
 
 PROPERTY = "blender_match"
+# An automatic match's alternatives on its material: the graphs ranked next after the kept one,
+# so that with it they are the ranking's top 3
+ALTERNATIVES = 2
+# What a match came from, which a re-rendered material carries on: the photo (a file path, or an
+# image datablock's name), the quality, the ranking's alternatives
+MATCH_ORIGIN = ("photo", "photo_image", "quality", "alternatives")
 BUMP_SCALE = 0.02  # metres of relief for the full 0..1 height range: a subtle bump, not a cliff
 
 # usage -> (node label, colour space, Principled input it feeds directly or None), in the order
@@ -120,12 +129,13 @@ def graph_name(report: dict, result_dir) -> str:
     return Path(result_dir).resolve().name
 
 
-def build_material(result_dir, name=None, pack=False, tiling=1.0):
+def build_material(result_dir, name=None, pack=False, tiling=1.0, origin: dict | None = None):
     """A new material built from the result folder (see the module docstring); returns it.
 
     ``name`` defaults to "Match <graph>" (Blender suffixes duplicates); images are named
     "<name> <usage>". ``pack`` packs the images into the .blend. ``tiling`` repeats the photo's
-    framing (the fit's zoom) that many times per UV unit. Everything is checked before any
+    framing (the fit's zoom) that many times per UV unit. ``origin``: what the match came from
+    (``MATCH_ORIGIN`` keys), kept in the custom property. Everything is checked before any
     datablock is created.
     """
     import bpy  # here, not at the top: read_report and srgb_to_linear serve without Blender
@@ -164,7 +174,7 @@ def build_material(result_dir, name=None, pack=False, tiling=1.0):
         tangent = _node(tree, "ShaderNodeTangent", "Tangent", _X["converters"], _ROW * len(files))
         tangent.direction_type = "UV_MAP"
         tree.links.new(tangent.outputs["Tangent"], shader.inputs["Tangent"])
-    material[PROPERTY] = _record(report, params, result_dir)
+    material[PROPERTY] = _record(report, params, result_dir, origin)
     return material
 
 
@@ -200,11 +210,22 @@ def _read_params(result_dir: Path) -> tuple[str, dict]:
     return text, data
 
 
-def _record(report: dict, params: str, result_dir: Path) -> dict:
-    """The custom property's value; None (which an IDProperty cannot hold) is left out."""
+def ranked_alternatives(report: dict) -> list[str]:
+    """The graphs an automatic match's ranking put next after the one it kept (at most
+    ``ALTERNATIVES``); none for a named match, whose report has no ranking."""
+    kept = report.get("graph")
+    ranked = [e.get("graph") for e in report.get("ranking") or () if isinstance(e, dict)]
+    return [name for name in ranked if isinstance(name, str) and name != kept][:ALTERNATIVES]
+
+
+def _record(report: dict, params: str, result_dir: Path, origin: dict | None = None) -> dict:
+    """The custom property's value: the report's, then the ``MATCH_ORIGIN`` entries of ``origin``;
+    None and empty lists (which an IDProperty cannot hold, or need not) are left out."""
     record = {"graph": report.get("graph"), "params": params, "size": report.get("size"),
-              "loss": report.get("loss_final"), "result_dir": str(result_dir)}
-    return {key: value for key, value in record.items() if value is not None}
+              "loss": report.get("loss_final"), "result_dir": str(result_dir),
+              "alternatives": ranked_alternatives(report)}
+    record.update({key: (origin or {})[key] for key in MATCH_ORIGIN if key in (origin or {})})
+    return {key: value for key, value in record.items() if value is not None and value != []}
 
 
 def _node(tree, kind: str, label: str, x: float, y: float):

@@ -1,12 +1,14 @@
 """The "Match" panel, in the sidebar (N) of the 3D Viewport and of the Shader Editor: photo, graph,
 quality, size, device, Match / Cancel with a progress bar (stage, time left), then the active
-matched material: its result, Re-render at another size, its parameter sliders with Apply, and
+matched material: its result, the graphs an automatic match ranked next (a button each, to match
+them instead), Re-render at another size, its parameter sliders with Apply, and
 Export for a game engine. One draw function (``draw_match_panel``), two thin Panel classes.
 """
 
 import bpy
 
 from ..blender import addon, match_job, parameters
+from ..vocabulary import QUALITY_NAMES
 
 
 def _loss_text(loss) -> str:
@@ -71,8 +73,32 @@ def _wrap(text: str, width: int):
     return lines[:6]
 
 
+def draw_alternatives(layout, record: dict, busy: bool):
+    """An automatic match's alternatives, the graphs its ranking put next after the kept one (its
+    near-ties), each a button that matches the same photo with that graph at the same quality, into
+    a new material; nothing for a named match or when the record does not say the photo."""
+    names = [name for name in record.get("alternatives") or () if isinstance(name, str)]
+    photo, image = record.get("photo"), record.get("photo_image")
+    if not names or not (photo or image):
+        return
+    col = layout.column(align=True)
+    col.label(text="Also close:")
+    row = col.row(align=True)
+    row.enabled = not busy
+    for name in names:
+        op = row.operator("blender_match.match_photo", text=addon.graph_title(name), icon_value=addon.graph_icon(name))
+        op.graph = name
+        if image:
+            op.image = image
+        else:
+            op.filepath = photo
+        if record.get("quality") in QUALITY_NAMES:
+            op.quality = record["quality"]
+
+
 def draw_material(layout, context, settings, material, record: dict, busy: bool):
-    """The active matched material: result, Re-render, parameters and Apply, Export."""
+    """The active matched material: result, an automatic match's alternatives, Re-render,
+    parameters and Apply, Export."""
     box = layout.box()
     box.label(text=material.name, icon='MATERIAL')
     col = box.column(align=True)
@@ -81,6 +107,7 @@ def draw_material(layout, context, settings, material, record: dict, busy: bool)
     last = match_job.LAST.get(addon.scene_key(context.scene)) or {}
     if last.get("material") == material.name and isinstance(last.get("seconds"), (int, float)):
         col.label(text=f"Time: {addon.format_seconds(last['seconds'])}")
+    draw_alternatives(box, record, busy)
 
     row = box.row(align=True)
     row.enabled = not busy

@@ -16,6 +16,7 @@ from blender_match.blender.material_builder import (  # noqa: E402  (after the b
     ResultFolderError,
     assign_material,
     build_material,
+    ranked_alternatives,
     srgb_to_linear,
 )
 
@@ -29,9 +30,10 @@ def _empty_blender():
     yield
 
 
-def make_result(root, flat=None, ao=True, graph="marble", params=PARAMS, anisotropy=False):
+def make_result(root, flat=None, ao=True, graph="marble", params=PARAMS, anisotropy=False, ranking=None):
     """A result folder as the pipeline writes it; ``flat`` maps usage -> constant value; the
-    anisotropy maps only with ``anisotropy`` (a brushed metal's)."""
+    anisotropy maps only with ``anisotropy`` (a brushed metal's); ``ranking`` (graph names, best
+    first) as an automatic match reports it."""
     flat = flat or {}
     root.mkdir(parents=True, exist_ok=True)
     maps = {}
@@ -46,6 +48,9 @@ def make_result(root, flat=None, ao=True, graph="marble", params=PARAMS, anisotr
         maps[usage] = {"file": file, "flat": [flat[usage]] * channels if usage in flat else None}
     (root / "params.json").write_text(json.dumps(params))
     report = {"graph": graph, "loss_final": 0.125, "seconds": 3.5, "size": W, "maps": maps}
+    if ranking is not None:
+        report["ranking"] = [{"graph": name, "distance": 0.01 * (i + 1), "start": "bank", "gain": [1.0, 1.0, 1.0]}
+                             for i, name in enumerate(ranking)]
     (root / "report.json").write_text(json.dumps(report))
     return root
 
@@ -233,6 +238,20 @@ def test_custom_property_round_trips_params(tmp_path):
     assert record["graph"] == "marble" and record["size"] == W
     assert record["loss"] == pytest.approx(0.125)
     assert record["result_dir"] == str(result.resolve())
+
+
+def test_an_automatic_match_keeps_the_graphs_ranked_next_and_its_origin(tmp_path):
+    # the kept graph need not be the ranking's first (a final choice among fitted candidates)
+    result = make_result(tmp_path / "auto", graph="granite", ranking=["asphalt", "granite", "rough_stone", "gravel"])
+    origin = {"photo": "//photos/gravel.jpg", "quality": "draft", "params": "not taken"}
+    record = build_material(result, origin=origin)["blender_match"].to_dict()
+    assert record["alternatives"] == ["asphalt", "rough_stone"]
+    assert record["photo"] == "//photos/gravel.jpg" and record["quality"] == "draft"
+    assert json.loads(record["params"]) == PARAMS  # only what a match came from is taken from the origin
+    assert ranked_alternatives({"graph": "granite", "ranking": [{"graph": "granite"}]}) == []
+    # a named match: no ranking, nothing to offer
+    named = build_material(make_result(tmp_path / "named"))["blender_match"].to_dict()
+    assert "alternatives" not in named and "photo" not in named
 
 
 def test_graph_path_names_the_material_by_its_stem(tmp_path):

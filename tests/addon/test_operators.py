@@ -247,6 +247,7 @@ def session(tmp_path_factory, plaster_photo) -> dict:
     env = {**os.environ, "BLENDER_USER_RESOURCES": str(work / "blender-user")}
     out = run_blender_script(SESSION, [str(zip_path), str(plaster_photo), str(work)], work, env, timeout=900)
     out["work"] = str(work)
+    out["photo"] = str(plaster_photo)
     return out
 
 
@@ -296,6 +297,10 @@ def test_match_builds_a_new_material_in_the_active_slot(session):
     assert session["existing_still_there"]
     # what re-rendering and editing need, on the material
     assert mat["record"]["graph"] == "plaster" and mat["record"]["size"] == 2048
+    # what the match came from, for matching another graph to the same photo (a named match: no
+    # ranking, so no alternatives)
+    assert mat["record"]["photo"] == session["photo"] and mat["record"]["quality"] == "draft"
+    assert "alternatives" not in mat["record"]
     assert mat["params"]["graph"] == "plaster" and mat["params"]["source"] == "plaster"
     exposed = {k[len("exposed."):]: v for k, v in mat["params"]["params"].items() if k.startswith("exposed.")}
     assert set(mat["sliders"]) == set(exposed) == {"color", "bump_scale", "bumps", "trowel", "roughness", "relief"}
@@ -339,6 +344,7 @@ def test_rerender_at_1k_makes_a_new_material_and_keeps_the_old(session):
     assert session["old_images_after_rerender"] == session["old_images_before_rerender"]
     assert _result_dir(new) != _result_dir(old) and _result_dir(new).name.startswith("plaster_1K_")
     assert new["params"]["params"] == old["params"]["params"]  # the same material, another size
+    assert (new["record"]["photo"], new["record"]["quality"]) == (session["photo"], "draft")  # carried on
     assert set(new["nodes"]) == set(old["nodes"])
 
 

@@ -197,6 +197,19 @@ SESSION = textwrap.dedent(r"""
     settings.export_high_depth = True
     settings.export_preset = "unity"
     out["finished"] = summary(draw())
+    # an automatic match's alternatives: a Match button each, for the same photo and quality
+    record = material["blender_match"]
+    out["photo"] = PHOTO
+    out["record_origin"] = {k: record.get(k) for k in ("photo", "photo_image", "quality", "alternatives")}
+    record["alternatives"] = ["stucco", "painted_wall"]
+    out["alternatives_file"] = summary(draw())
+    del record["photo"]
+    record["photo_image"] = "Photo Image"
+    out["alternatives_image"] = summary(draw())
+    del record["photo_image"]
+    out["alternatives_no_photo"] = summary(draw())
+    del record["alternatives"]
+    record["photo"] = PHOTO
 
     # Cancel, pressed as soon as a job has started
     job = match_job.start_match(bpy.context, photo=PHOTO, graph="plaster", size=64, quality="draft",
@@ -359,6 +372,23 @@ def test_panel_after_a_match_shows_the_result_and_its_tools(session):
     assert ("value", "prop", True) in sliders  # [0, 1] parameters: sliders
     assert ("value_wide", "prop", False) in sliders  # plaster's bump_scale is in [0.5, 2]
     assert len([p for p in finished["props"] if p[0] == "BLENDER_MATCH_PG_parameter"]) == 6
+
+
+def test_an_automatic_matchs_alternatives_are_buttons_that_match_them(session):
+    # the match's record says what it came from; a named match has no alternatives to offer
+    assert session["record_origin"] == {"photo": session["photo"], "photo_image": None, "quality": "draft",
+                                        "alternatives": None}
+    assert "Also close:" not in session["finished"]["labels"]
+    for key, photo in (("alternatives_file", {"filepath": session["photo"]}),
+                       ("alternatives_image", {"image": "Photo Image"})):
+        drawn = session[key]
+        assert "Also close:" in drawn["labels"]
+        matches = [op for op in drawn["operators"] if op[0] == "blender_match.match_photo" and op[1] != "Match"]
+        assert matches == [["blender_match.match_photo", "Stucco", {"graph": "stucco", **photo, "quality": "draft"}],
+                           ["blender_match.match_photo", "Painted Wall",
+                            {"graph": "painted_wall", **photo, "quality": "draft"}]]
+    # without the photo there is nothing to match them with
+    assert "Also close:" not in session["alternatives_no_photo"]["labels"]
 
 
 def test_preferences_probe_and_setup(session):
