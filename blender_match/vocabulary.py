@@ -102,3 +102,16 @@ CALIBRATION, GAIN, ZOOM, FALLOFF = "calibration", "basecolor_gain", "zoom", "fal
 READING_PHOTO, SELECTING, FITTING, WRITING_MAPS = "reading photo", "selecting", "fitting", "writing maps"
 STAGES = (READING_PHOTO, SELECTING, FITTING, WRITING_MAPS)
 STAGE_TITLES = {stage: stage.capitalize() for stage in STAGES}
+
+
+# An automatic match's alternatives: the graphs its ranking put next after the one it kept, so
+# that with it they are the ranking's top 3 (the panel's and the command line's "also close")
+ALTERNATIVES = 2
+
+
+def ranked_alternatives(report: dict) -> list[str]:
+    """The graphs an automatic match's report ranks next after the one it kept (at most
+    ``ALTERNATIVES``); none for a named match, whose report has no ranking."""
+    kept = report.get("graph")
+    ranked = [e.get("graph") for e in report.get("ranking") or () if isinstance(e, dict)]
+    return [name for name in ranked if isinstance(name, str) and name != kept][:ALTERNATIVES]

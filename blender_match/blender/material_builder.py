@@ -61,12 +61,10 @@ from ..vocabulary import (
     PARAMS_FILE,
     REPORT_FILE,
     ZOOM,
+    ranked_alternatives,
 )
 
 PROPERTY = "blender_match"
-# An automatic match's alternatives on its material: the graphs ranked next after the kept one,
-# so that with it they are the ranking's top 3
-ALTERNATIVES = 2
 # What a match came from, which a re-rendered material carries on: the photo (a file path, or an
 # image datablock's name), the quality, the ranking's alternatives
 MATCH_ORIGIN = ("photo", "photo_image", "quality", "alternatives")
@@ -208,14 +206,6 @@ def _read_params(result_dir: Path) -> tuple[str, dict]:
     except (OSError, UnicodeDecodeError, json.JSONDecodeError) as exc:
         raise ResultFolderError(f"{path}: unreadable ({exc})") from None
     return text, data
-
-
-def ranked_alternatives(report: dict) -> list[str]:
-    """The graphs an automatic match's ranking put next after the one it kept (at most
-    ``ALTERNATIVES``); none for a named match, whose report has no ranking."""
-    kept = report.get("graph")
-    ranked = [e.get("graph") for e in report.get("ranking") or () if isinstance(e, dict)]
-    return [name for name in ranked if isinstance(name, str) and name != kept][:ALTERNATIVES]
 
 
 def _record(report: dict, params: str, result_dir: Path, origin: dict | None = None) -> dict:

@@ -8,7 +8,7 @@ import json
 from pathlib import Path
 
 from ..pipeline import AUTO_CANDIDATES, MatchOptions, match_photo
-from ..vocabulary import DEFAULT_DEVICE, DEFAULT_QUALITY, DEVICE_NAMES, QUALITY_NAMES
+from ..vocabulary import DEFAULT_DEVICE, DEFAULT_QUALITY, DEVICE_NAMES, QUALITY_NAMES, ranked_alternatives
 from ._progress import progress_bar
 
 
@@ -83,14 +83,23 @@ def run(args) -> int:
         display.close()
     if args.json:
         print(json.dumps(report, indent=1))
-        return 0
+    else:
+        print_summary(report, args.out)
+    return 0
+
+
+def print_summary(report: dict, out: Path) -> None:
+    """The match's summary lines: graph, loss, iterations and time; an automatic match's next-ranked
+    graphs; the zoom; each map's file; the report's."""
     print(f"graph {report['graph']}: loss {report['loss_initial']:.5f} -> {report['loss_final']:.5f} "
           f"in {report['iterations']} iterations, {report['seconds']:.1f} s on {report['device']}")
+    alternatives = ranked_alternatives(report)
+    if alternatives:
+        print(f"also close       {', '.join(alternatives)} (ranked next: --graph NAME matches one of them)")
     zoom = report.get("calibration", {}).get("zoom", 1.0)
     if zoom != 1:
         print(f"zoom             {zoom:g} texture periods across the photo (the material's Mapping scale)")
     for usage, info in report["maps"].items():
         flat = f" (flat: {info['flat']})" if info["flat"] else ""
-        print(f"{usage:<17} {args.out / info['file']}{flat}")
-    print(f"report           {args.out / 'report.json'}")
-    return 0
+        print(f"{usage:<17} {out / info['file']}{flat}")
+    print(f"report           {out / 'report.json'}")

@@ -7,7 +7,15 @@ import pytest
 import torch
 
 from blender_match.image_files import write_png
-from blender_match.vocabulary import ANISOTROPY, ANISOTROPY_ANGLE, CALIBRATION, MATERIAL_OUTPUTS, USAGES, ZOOM
+from blender_match.vocabulary import (
+    ANISOTROPY,
+    ANISOTROPY_ANGLE,
+    CALIBRATION,
+    MATERIAL_OUTPUTS,
+    USAGES,
+    ZOOM,
+    ranked_alternatives,
+)
 
 bpy = pytest.importorskip("bpy")
 
@@ -16,7 +24,6 @@ from blender_match.blender.material_builder import (  # noqa: E402  (after the b
     ResultFolderError,
     assign_material,
     build_material,
-    ranked_alternatives,
     srgb_to_linear,
 )
 

@@ -7,6 +7,7 @@ import pytest
 import sbs_snippets as W
 import torch
 
+from blender_match.cli.match import print_summary
 from blender_match.diffmat.calibration import CLIP_LEVEL
 from blender_match.diffmat.descriptor import TextureDescriptor
 from blender_match.diffmat.optim import TargetLoss, resize_square
@@ -50,7 +51,7 @@ from blender_match.selection.rank import (
     rank_graphs,
 )
 from blender_match.translator import translate
-from blender_match.vocabulary import GAIN
+from blender_match.vocabulary import GAIN, ranked_alternatives
 
 
 @pytest.fixture(autouse=True)
@@ -309,7 +310,7 @@ def _synthetic_photo(tmp_path, name="marble", k=100_003, seed=300_001):
     return path
 
 
-def test_match_without_a_graph_selects_fits_and_reports(tmp_path):
+def test_match_without_a_graph_selects_fits_and_reports(tmp_path, capsys):
     from blender_match.pipeline import MatchOptions, match_photo
 
     photo = _synthetic_photo(tmp_path)
@@ -332,6 +333,15 @@ def test_match_without_a_graph_selects_fits_and_reports(tmp_path):
                for f in fitted)
     assert saved["graph"] in [f["graph"] for f in fitted]
     assert (tmp_path / "out" / "basecolor.png").is_file()
+    # the graphs ranked next after the kept one (the rest of the top 3), which the panel offers and
+    # the command line prints
+    alternatives = [e["graph"] for e in ranking if e["graph"] != saved["graph"]][:2]
+    assert ranked_alternatives(saved) == alternatives and len(alternatives) == 2
+    print_summary(saved, tmp_path / "out")
+    lines = capsys.readouterr().out.splitlines()
+    assert f"also close       {alternatives[0]}, {alternatives[1]} (ranked next: --graph NAME matches one of them)" \
+        in lines
+    assert lines[0].startswith(f"graph {saved['graph']}: loss ")
     stages = [e["stage"] for e in events]
     assert "selecting" in stages and "fitting" in stages
     fitting = [e for e in events if e["stage"] == "fitting" and "loss" in e]
