@@ -1,6 +1,7 @@
-"""The words every floor of blender_match shares: material outputs, quality presets, devices and
-progress stages. Standard library only, so that Blender's Python (which has no torch) reads the
-same definitions as the engine, the pipeline and the command line.
+"""The words every floor of blender_match shares: material outputs, quality presets, devices,
+progress stages and an automatic match's alternatives. Standard library only, so that Blender's
+Python (which has no torch) reads the same definitions as the engine, the pipeline and the command
+line.
 
 A material output is one map a graph produces and a result folder holds: its name (the graph's
 output usage, the report's key), its label, its Substance usage, how many channels the engine
