@@ -412,9 +412,11 @@ def _worker(python: str, request: dict) -> client.WorkerJob:
 
 def start_match(context, *, photo=None, image=None, graph="AUTO", size=2048, quality=DEFAULT_QUALITY,
                 device="default", seed=0, pack=False, tiling=1.0, iterations=0, calibrate=True,
-                match_scale=False) -> MatchJob:
+                match_scale=False, alternatives=()) -> MatchJob:
     """Start matching the photo (a file path, or an image datablock ``image``) with ``graph``
-    ('AUTO': automatic selection); JobError when it cannot start (nothing changed then)."""
+    ('AUTO': automatic selection); JobError when it cannot start (nothing changed then).
+    ``alternatives``: graphs an earlier automatic match of the photo ranked near ``graph``, which
+    the new material offers (an automatic match's own ranking replaces them)."""
     scene = context.scene
     _check_idle(scene)
     python = worker_python(context)
@@ -452,8 +454,9 @@ def start_match(context, *, photo=None, image=None, graph="AUTO", size=2048, qua
             Path(tmp).unlink(missing_ok=True)
         raise
     object_name, slot = _target(context)
-    origin = {"photo_image": image.name} if image is not None else {"photo": str(photo)}
+    origin: dict = {"photo_image": image.name} if image is not None else {"photo": str(photo)}
     origin["quality"] = quality
+    origin["alternatives"] = [name.strip() for name in alternatives if name.strip() not in ("", graph)]
     return MatchJob(worker, scene=scene, out_dir=out_dir, created=created, pack=pack, tiling=tiling,
                     object_name=object_name, slot_index=slot, temp_files=temp_files, notes=notes, origin=origin)
 

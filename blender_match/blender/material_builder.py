@@ -209,12 +209,13 @@ def _read_params(result_dir: Path) -> tuple[str, dict]:
 
 
 def _record(report: dict, params: str, result_dir: Path, origin: dict | None = None) -> dict:
-    """The custom property's value: the report's, then the ``MATCH_ORIGIN`` entries of ``origin``;
+    """The custom property's value: the report's, with the ``MATCH_ORIGIN`` entries of ``origin``
+    (the report's own ranking, an automatic match's, comes before the origin's alternatives);
     None and empty lists (which an IDProperty cannot hold, or need not) are left out."""
-    record = {"graph": report.get("graph"), "params": params, "size": report.get("size"),
-              "loss": report.get("loss_final"), "result_dir": str(result_dir),
-              "alternatives": ranked_alternatives(report)}
-    record.update({key: (origin or {})[key] for key in MATCH_ORIGIN if key in (origin or {})})
+    record = {key: (origin or {}).get(key) for key in MATCH_ORIGIN}
+    record.update({"graph": report.get("graph"), "params": params, "size": report.get("size"),
+                   "loss": report.get("loss_final"), "result_dir": str(result_dir)})
+    record["alternatives"] = ranked_alternatives(report) or record["alternatives"]
     return {key: value for key, value in record.items() if value is not None and value != []}
 
 

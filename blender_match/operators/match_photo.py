@@ -55,6 +55,9 @@ class BLENDER_MATCH_OT_match_photo(JobRunner, bpy.types.Operator):
                             description="Override the quality preset's iteration count (0: the preset's)")
     wait: BoolProperty(name="Wait", default=False, options={'HIDDEN', 'SKIP_SAVE'},
                        description="Run to the end before returning (scripts)")
+    alternatives: StringProperty(name="Alternatives", options={'HIDDEN', 'SKIP_SAVE'},
+                                 description="Graphs an earlier automatic match of this photo ranked near this one "
+                                             "(comma-separated): the new material offers them in turn")
 
     @classmethod
     def poll(cls, context):
@@ -72,6 +75,7 @@ class BLENDER_MATCH_OT_match_photo(JobRunner, bpy.types.Operator):
         options = self._photo(settings)
         options.update(self._fit_options(settings))
         options["seed"], options["iterations"] = self.seed, self.iterations
+        options["alternatives"] = [name for name in self.alternatives.split(",") if name.strip()]
         return options
 
     def _photo(self, settings) -> dict:

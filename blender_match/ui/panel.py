@@ -85,9 +85,11 @@ def draw_alternatives(layout, record: dict, busy: bool):
     col.label(text="Also close:")
     row = col.row(align=True)
     row.enabled = not busy
+    ranked = [record.get("graph"), *names]  # the ranking's top 3: each new material offers the other two
     for name in names:
         op = row.operator("blender_match.match_photo", text=addon.graph_title(name), icon_value=addon.graph_icon(name))
         op.graph = name
+        op.alternatives = ",".join(n for n in ranked if isinstance(n, str) and n != name)
         if image:
             op.image = image
         else:

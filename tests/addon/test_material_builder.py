@@ -256,9 +256,13 @@ def test_an_automatic_match_keeps_the_graphs_ranked_next_and_its_origin(tmp_path
     assert record["photo"] == "//photos/gravel.jpg" and record["quality"] == "draft"
     assert json.loads(record["params"]) == PARAMS  # only what a match came from is taken from the origin
     assert ranked_alternatives({"graph": "granite", "ranking": [{"graph": "granite"}]}) == []
-    # a named match: no ranking, nothing to offer
+    # an automatic match's own ranking comes before alternatives handed down
+    handed = {**origin, "alternatives": ["felt"]}
+    assert build_material(result, origin=handed)["blender_match"]["alternatives"] == ["asphalt", "rough_stone"]
+    # a named match: no ranking; it offers only what it was handed (an earlier automatic match's)
     named = build_material(make_result(tmp_path / "named"))["blender_match"].to_dict()
     assert "alternatives" not in named and "photo" not in named
+    assert build_material(make_result(tmp_path / "named2"), origin=handed)["blender_match"]["alternatives"] == ["felt"]
 
 
 def test_graph_path_names_the_material_by_its_stem(tmp_path):

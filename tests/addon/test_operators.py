@@ -113,7 +113,7 @@ SESSION = textwrap.dedent(r"""
     before = state()
     t0 = time.monotonic()
     out["match"] = run_op(bpy.ops.blender_match.match_photo, filepath=PHOTO, graph="plaster", quality="draft",
-                          iterations=2, wait=True)
+                          iterations=2, wait=True, alternatives="stucco,plaster,painted_wall")
     out["match"]["seconds"] = round(time.monotonic() - t0, 1)
     plane = bpy.data.objects[plane.name]
     matched = plane.active_material
@@ -297,10 +297,11 @@ def test_match_builds_a_new_material_in_the_active_slot(session):
     assert session["existing_still_there"]
     # what re-rendering and editing need, on the material
     assert mat["record"]["graph"] == "plaster" and mat["record"]["size"] == 2048
-    # what the match came from, for matching another graph to the same photo (a named match: no
-    # ranking, so no alternatives)
+    # what the match came from, for matching another graph to the same photo: the photo, the
+    # quality, and the graphs an earlier automatic match ranked with this one (given to the
+    # operator, as the panel's "Also close" buttons do; the matched graph itself left out)
     assert mat["record"]["photo"] == session["photo"] and mat["record"]["quality"] == "draft"
-    assert "alternatives" not in mat["record"]
+    assert mat["record"]["alternatives"] == ["stucco", "painted_wall"]
     assert mat["params"]["graph"] == "plaster" and mat["params"]["source"] == "plaster"
     exposed = {k[len("exposed."):]: v for k, v in mat["params"]["params"].items() if k.startswith("exposed.")}
     assert set(mat["sliders"]) == set(exposed) == {"color", "bump_scale", "bumps", "trowel", "roughness", "relief"}
@@ -344,7 +345,8 @@ def test_rerender_at_1k_makes_a_new_material_and_keeps_the_old(session):
     assert session["old_images_after_rerender"] == session["old_images_before_rerender"]
     assert _result_dir(new) != _result_dir(old) and _result_dir(new).name.startswith("plaster_1K_")
     assert new["params"]["params"] == old["params"]["params"]  # the same material, another size
-    assert (new["record"]["photo"], new["record"]["quality"]) == (session["photo"], "draft")  # carried on
+    assert (new["record"]["photo"], new["record"]["quality"], new["record"]["alternatives"]) == (
+        session["photo"], "draft", ["stucco", "painted_wall"])  # carried on
     assert set(new["nodes"]) == set(old["nodes"])
 
 

@@ -384,9 +384,11 @@ def test_an_automatic_matchs_alternatives_are_buttons_that_match_them(session):
         drawn = session[key]
         assert "Also close:" in drawn["labels"]
         matches = [op for op in drawn["operators"] if op[0] == "blender_match.match_photo" and op[1] != "Match"]
-        assert matches == [["blender_match.match_photo", "Stucco", {"graph": "stucco", **photo, "quality": "draft"}],
+        # each new material will offer the other two of the ranking's top 3 in turn
+        assert matches == [["blender_match.match_photo", "Stucco",
+                            {"graph": "stucco", "alternatives": "plaster,painted_wall", **photo, "quality": "draft"}],
                            ["blender_match.match_photo", "Painted Wall",
-                            {"graph": "painted_wall", **photo, "quality": "draft"}]]
+                            {"graph": "painted_wall", "alternatives": "plaster,stucco", **photo, "quality": "draft"}]]
     # without the photo there is nothing to match them with
     assert "Also close:" not in session["alternatives_no_photo"]["labels"]
 
