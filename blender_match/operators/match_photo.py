@@ -75,7 +75,7 @@ class BLENDER_MATCH_OT_match_photo(JobRunner, bpy.types.Operator):
         options = self._photo(settings)
         options.update(self._fit_options(settings))
         options["seed"], options["iterations"] = self.seed, self.iterations
-        options["alternatives"] = [name for name in self.alternatives.split(",") if name.strip()]
+        options["alternatives"] = self.alternatives.split(",")  # start_match drops blanks and the graph
         return options
 
     def _photo(self, settings) -> dict:
